@@ -1,0 +1,63 @@
+# Helpers that give every tmr target the same warnings, include layout and
+# install/export rules.
+
+set(TMR_WARNING_FLAGS -Wall -Wextra -Wno-unused-parameter)
+
+# tmr_add_library(NAME
+#   SRCS file...            sources
+#   PUBLIC_INCLUDE dir      public include directory (installed)
+#   PRIVATE_INCLUDE dir...  private include directories
+#   PUBLIC_LINK lib...      dependencies that appear in public headers
+#   PRIVATE_LINK lib...)    implementation dependencies
+function(tmr_add_library name)
+  cmake_parse_arguments(ARG "" "PUBLIC_INCLUDE"
+                        "SRCS;PRIVATE_INCLUDE;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
+  add_library(${name} ${ARG_SRCS})
+  add_library(tmr::${name} ALIAS ${name})
+  target_compile_options(${name} PRIVATE ${TMR_WARNING_FLAGS})
+  target_compile_features(${name} PUBLIC cxx_std_17)
+  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(ARG_PUBLIC_INCLUDE)
+    target_include_directories(${name} PUBLIC
+      $<BUILD_INTERFACE:${ARG_PUBLIC_INCLUDE}>
+      $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+    install(DIRECTORY ${ARG_PUBLIC_INCLUDE}/
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
+  if(ARG_PRIVATE_INCLUDE)
+    target_include_directories(${name} PRIVATE ${ARG_PRIVATE_INCLUDE})
+  endif()
+  target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_LINK} PRIVATE ${ARG_PRIVATE_LINK})
+  install(TARGETS ${name} EXPORT tmrTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endfunction()
+
+# tmr_add_executable(NAME SRCS file... LINK lib... [NO_INSTALL])
+function(tmr_add_executable name)
+  cmake_parse_arguments(ARG "NO_INSTALL" "" "SRCS;LINK" ${ARGN})
+  add_executable(${name} ${ARG_SRCS})
+  target_compile_options(${name} PRIVATE ${TMR_WARNING_FLAGS})
+  target_link_libraries(${name} PRIVATE ${ARG_LINK})
+  if(NOT ARG_NO_INSTALL)
+    install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
+endfunction()
+
+# tmr_add_test(NAME SRCS file... LINK lib... [LABELS label...])
+# A GoogleTest executable whose tests are registered with ctest one by one.
+function(tmr_add_test name)
+  if(NOT TMR_BUILD_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SRCS;LINK;LABELS;INCLUDE" ${ARGN})
+  add_executable(${name} ${ARG_SRCS})
+  target_compile_options(${name} PRIVATE ${TMR_WARNING_FLAGS})
+  target_include_directories(${name} PRIVATE ${ARG_INCLUDE})
+  target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
+  gtest_discover_tests(${name}
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    PROPERTIES LABELS "${ARG_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()

@@ -1,0 +1,25 @@
+# Installs the tmr build tree into WORK_DIR/install, then configures, builds
+# and runs the consumer project against it.
+set(prefix ${WORK_DIR}/install)
+file(REMOVE_RECURSE ${WORK_DIR})
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endfunction()
+
+run(${CMAKE_COMMAND} --install ${TMR_BINARY_DIR} --prefix ${prefix})
+run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
+    -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release
+    "-DCMAKE_PREFIX_PATH=${prefix}\;${EXTRA_PREFIX_PATH}")
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build --parallel 2)
+run(${WORK_DIR}/build/partition_summary)
+if(EXISTS ${WORK_DIR}/build/synth_and_read)
+  run(${WORK_DIR}/build/synth_and_read ${WORK_DIR}/consumer.db)
+else()
+  message(STATUS "colmap_plugin not installed: only libtmr checked")
+endif()

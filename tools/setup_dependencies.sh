@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Installs everything tmr needs on a Debian bookworm machine and builds COLMAP 3.10
+# from Debian's (trixie) source package into a fixed prefix outside the checkout.
+#
+# Idempotent: a second run on the same machine checks a few stamps and exits in
+# seconds. Needs root (or sudo) for apt-get.
+#
+# Environment:
+#   TMR_DEPS_PREFIX   where COLMAP is installed (default /opt/tmr-deps)
+#   TMR_JOBS          parallel build jobs (default 2)
+set -euo pipefail
+
+PREFIX="${TMR_DEPS_PREFIX:-/opt/tmr-deps}"
+JOBS="${TMR_JOBS:-2}"
+COLMAP_VERSION="3.10"
+COLMAP_DEB_VERSION="3.10-2"
+COLMAP_TARBALL="colmap_${COLMAP_VERSION}.orig.tar.gz"
+COLMAP_SHA256="61850f323e201ab6a1abbfb0e4a8b3ba1c4cedbf55e0a5716bdea1df8ae1813a"
+COLMAP_PREFIX="${PREFIX}/colmap-${COLMAP_VERSION}"
+STAMP="${COLMAP_PREFIX}/.tmr-installed"
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git dpkg-dev ca-certificates
+  libeigen3-dev libgoogle-glog-dev libgflags-dev libceres-dev libflann-dev
+  libfreeimage-dev libmetis-dev libsqlite3-dev sqlite3
+  libboost-program-options-dev libboost-filesystem-dev libboost-graph-dev
+  libboost-system-dev libsuitesparse-dev libgtest-dev libgmock-dev
+  libopencv-dev
+)
+
+log() { echo "[setup] $*"; }
+die() { echo "[setup] error: $*" >&2; exit 1; }
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || die "run as root or install sudo"
+  SUDO="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+
+# --- 1. Debian packages ------------------------------------------------------
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  log "installing ${#missing[@]} Debian packages: ${missing[*]}"
+  $SUDO apt-get update -qq || die "apt-get update failed"
+  if ! $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/tmp/tmr-apt.log 2>&1; then
+    tail -n 20 /tmp/tmr-apt.log >&2
+    die "apt-get install failed for: ${missing[*]} (see /tmp/tmr-apt.log)"
+  fi
+else
+  log "Debian packages: all ${#PACKAGES[@]} present"
+fi
+
+# --- 2. COLMAP 3.10 ----------------------------------------------------------
+if [[ -f "$STAMP" && -x "${COLMAP_PREFIX}/bin/colmap" &&
+      -f "${COLMAP_PREFIX}/share/colmap/colmap-config.cmake" ]]; then
+  log "COLMAP ${COLMAP_VERSION}: already installed in ${COLMAP_PREFIX}"
+  exit 0
+fi
+
+SRC_DIR="${PREFIX}/src"
+$SUDO mkdir -p "$SRC_DIR"
+$SUDO chown "$(id -u):$(id -g)" "$PREFIX" "$SRC_DIR"
+
+if [[ ! -f "${SRC_DIR}/${COLMAP_TARBALL}" ]] ||
+   ! echo "${COLMAP_SHA256}  ${SRC_DIR}/${COLMAP_TARBALL}" | sha256sum -c --status; then
+  SRC_LIST=/etc/apt/sources.list.d/tmr-trixie-src.sources
+  if [[ ! -f "$SRC_LIST" ]]; then
+    log "adding deb-src entry for Debian trixie (source packages only)"
+    uris=$(awk '/^URIs:/ {print $2; exit}' /etc/apt/sources.list.d/debian.sources 2>/dev/null || true)
+    uris="${uris:-http://deb.debian.org/debian}"
+    signed=$(awk '/^Signed-By:/ {print $2; exit}' /etc/apt/sources.list.d/debian.sources 2>/dev/null || true)
+    signed="${signed:-/usr/share/keyrings/debian-archive-keyring.gpg}"
+    printf 'Types: deb-src\nURIs: %s\nSuites: trixie\nComponents: main\nSigned-By: %s\n' \
+      "$uris" "$signed" | $SUDO tee "$SRC_LIST" >/dev/null
+  fi
+  log "apt-get update (with trixie sources)"
+  $SUDO apt-get update -qq || die "apt-get update failed"
+  log "downloading COLMAP ${COLMAP_DEB_VERSION} source tarball"
+  (cd "$SRC_DIR" && rm -f "$COLMAP_TARBALL" &&
+     apt-get source --tar-only "colmap=${COLMAP_DEB_VERSION}" >/tmp/tmr-apt-source.log 2>&1) ||
+    { tail -n 5 /tmp/tmr-apt-source.log >&2; die "cannot download colmap=${COLMAP_DEB_VERSION} source from Debian"; }
+  # The deb-src entry was only needed for this download.
+  $SUDO rm -f "$SRC_LIST"
+  echo "${COLMAP_SHA256}  ${SRC_DIR}/${COLMAP_TARBALL}" | sha256sum -c --status ||
+    die "sha256 mismatch for ${COLMAP_TARBALL}"
+fi
+log "sha256 of ${COLMAP_TARBALL}: ok"
+
+BUILD_ROOT="${SRC_DIR}/colmap-${COLMAP_VERSION}"
+rm -rf "$BUILD_ROOT"
+mkdir -p "$BUILD_ROOT"
+tar -xzf "${SRC_DIR}/${COLMAP_TARBALL}" -C "$BUILD_ROOT" --strip-components=1
+log "configuring COLMAP (Release, no GUI/CUDA/CGAL)"
+cmake -S "$BUILD_ROOT" -B "$BUILD_ROOT/build" -G Ninja \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$COLMAP_PREFIX" \
+  -DGUI_ENABLED=OFF -DOPENGL_ENABLED=OFF -DCUDA_ENABLED=OFF -DCGAL_ENABLED=OFF \
+  -DTESTS_ENABLED=OFF -DIPO_ENABLED=OFF >"$BUILD_ROOT/configure.log" 2>&1 ||
+  { tail -n 30 "$BUILD_ROOT/configure.log" >&2; die "COLMAP configure failed"; }
+log "building COLMAP with ${JOBS} jobs (about 10 minutes on 2 cores)"
+start=$(date +%s)
+cmake --build "$BUILD_ROOT/build" -j "$JOBS" >"$BUILD_ROOT/build.log" 2>&1 ||
+  { tail -n 30 "$BUILD_ROOT/build.log" >&2; die "COLMAP build failed (log: $BUILD_ROOT/build.log)"; }
+cmake --install "$BUILD_ROOT/build" >"$BUILD_ROOT/install.log" 2>&1 ||
+  die "COLMAP install failed"
+"${COLMAP_PREFIX}/bin/colmap" help >/dev/null 2>&1 || die "installed colmap does not run"
+date -u +%FT%TZ >"$STAMP"
+rm -rf "$BUILD_ROOT/build"
+log "COLMAP ${COLMAP_VERSION} installed in ${COLMAP_PREFIX} ($(( $(date +%s) - start )) s build)"
