@@ -1,43 +1,78 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// tmr_synth --database_path DB [--model_path DIR]: writes a synthetic scene
-// as a COLMAP database (through COLMAP's Database class) plus ground truth.
+// tmr_synth --database_path DB [--model_path DIR] [--family places|street|city]
+// writes a synthetic scene as a COLMAP database (through COLMAP's Database
+// class) plus its ground-truth model. See docs/synthetic_scenes.md.
 #include <boost/program_options.hpp>
 
+#include <chrono>
 #include <iostream>
 
 #include "tmr/colmap/synthetic_scene.h"
 
 namespace po = boost::program_options;
 
+namespace {
+
+template <typename T>
+void Add(po::options_description* desc, const char* name, T* value,
+         const char* help) {
+  desc->add_options()(name, po::value(value)->default_value(*value), help);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   std::string database_path, model_path;
-  tmr::SyntheticSceneOptions options;
+  tmr::SyntheticSceneOptions o;
   po::options_description desc(
       "tmr_synth: synthetic scene as a COLMAP database plus ground truth");
   desc.add_options()("help,h", "print this help")(
       "database_path", po::value(&database_path)->required(),
       "database to write (must not exist)")(
       "model_path", po::value(&model_path),
-      "folder for the ground-truth model (COLMAP binary)")(
-      "num_images",
-      po::value(&options.num_images)->default_value(options.num_images),
-      "number of images")(
-      "num_cameras",
-      po::value(&options.num_cameras)->default_value(options.num_cameras),
-      "number of distinct cameras")(
-      "num_points3D",
-      po::value(&options.num_points3D)->default_value(options.num_points3D),
-      "number of 3D points")(
-      "num_unmatched_keypoints",
-      po::value(&options.num_unmatched_keypoints)
-          ->default_value(options.num_unmatched_keypoints),
-      "keypoints per image that match nothing")(
-      "keypoint_noise_px",
-      po::value(&options.keypoint_noise_px)
-          ->default_value(options.keypoint_noise_px),
-      "keypoint noise (pixels)")(
-      "seed", po::value(&options.seed)->default_value(options.seed),
-      "random seed");
+      "folder for the ground-truth model (COLMAP binary)");
+  Add(&desc, "family", &o.family, "places, street or city");
+  Add(&desc, "seed", &o.seed, "random seed");
+  Add(&desc, "num_places", &o.num_places, "places: linked dense places");
+  Add(&desc, "cameras_per_place", &o.cameras_per_place, "places: ring cameras");
+  Add(&desc, "num_unlinked_places", &o.num_unlinked_places,
+      "places: places without link");
+  Add(&desc, "link_spacing", &o.link_spacing,
+      "places: metres between link cameras (0: no link)");
+  Add(&desc, "place_distance", &o.place_distance,
+      "places: metres between places");
+  Add(&desc, "street_length", &o.street_length, "street: length in metres");
+  Add(&desc, "street_gap", &o.street_gap, "street: none, removed or thinned");
+  Add(&desc, "gap_begin", &o.gap_begin,
+      "street: gap start (fraction of length)");
+  Add(&desc, "gap_end", &o.gap_end, "street: gap end (fraction of length)");
+  Add(&desc, "gap_thinning", &o.gap_thinning,
+      "street: camera spacing factor in a thinned gap");
+  Add(&desc, "city_blocks_x", &o.city_blocks_x, "city: blocks along x");
+  Add(&desc, "city_blocks_y", &o.city_blocks_y, "city: blocks along y");
+  Add(&desc, "camera_spacing", &o.camera_spacing,
+      "metres between cameras on streets");
+  Add(&desc, "min_focal_px", &o.min_focal_px, "smallest true focal length");
+  Add(&desc, "max_focal_px", &o.max_focal_px, "largest true focal length");
+  Add(&desc, "focal_prior_error", &o.focal_prior_error,
+      "relative error of the prior focal");
+  Add(&desc, "point_density", &o.point_density,
+      "3D points per square metre of facade");
+  Add(&desc, "max_range", &o.max_range, "metres a point can be seen from");
+  Add(&desc, "detection_probability", &o.detection_probability,
+      "chance a visible point is detected");
+  Add(&desc, "keypoint_noise_px", &o.keypoint_noise_px,
+      "keypoint noise (pixels)");
+  Add(&desc, "unmatched_keypoint_ratio", &o.unmatched_keypoint_ratio,
+      "extra keypoints per detection");
+  Add(&desc, "match_probability", &o.match_probability,
+      "chance two detections match");
+  Add(&desc, "max_pairs_per_image", &o.max_pairs_per_image,
+      "retrieval: partners per image (0: all)");
+  Add(&desc, "outlier_match_ratio", &o.outlier_match_ratio,
+      "raw-match outliers per inlier");
+  Add(&desc, "false_pairs_per_100_images", &o.false_pairs_per_100_images,
+      "false verified pairs");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
@@ -50,9 +85,12 @@ int main(int argc, char** argv) {
     std::cerr << "tmr_synth: error: " << e.what() << " (see --help)\n";
     return 2;
   }
+  const auto start = std::chrono::steady_clock::now();
   std::string error;
+  tmr::SyntheticSceneSummary summary;
   try {
-    if (!tmr::WriteSyntheticScene(options, database_path, model_path, &error)) {
+    if (!tmr::WriteSyntheticScene(o, database_path, model_path, &summary,
+                                  &error)) {
       std::cerr << "tmr_synth: error: " << error << "\n";
       return 1;
     }
@@ -60,9 +98,17 @@ int main(int argc, char** argv) {
     std::cerr << "tmr_synth: error: " << e.what() << "\n";
     return 1;
   }
-  std::cout << "wrote " << database_path << " (" << options.num_images
-            << " images)";
-  if (!model_path.empty()) std::cout << " and ground truth " << model_path;
-  std::cout << "\n";
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  std::cout << "wrote " << database_path << ": " << summary.num_images
+            << " images, " << summary.num_verified_pairs << " verified pairs (+"
+            << summary.num_false_pairs << " false), "
+            << summary.mean_keypoints_per_image << " keypoints/image";
+  if (!model_path.empty()) {
+    std::cout << "; ground truth " << model_path << ": " << summary.num_points3D
+              << " points, mean track length " << summary.mean_track_length;
+  }
+  std::cout << " (" << seconds << " s)\n";
   return 0;
 }

@@ -9,10 +9,12 @@ int main(int argc, char** argv) {
   const std::string path = argc > 1 ? argv[1] : "consumer.db";
   std::filesystem::remove(path);
   tmr::SyntheticSceneOptions options;
-  options.num_images = 6;
-  options.num_points3D = 200;
+  options.cameras_per_place = 6;
+  options.num_unlinked_places = 0;
+  options.link_spacing = 0;
+  options.num_places = 1;
   std::string error;
-  if (!tmr::WriteSyntheticScene(options, path, "", &error)) {
+  if (!tmr::WriteSyntheticScene(options, path, "", nullptr, &error)) {
     std::cerr << error << "\n";
     return 1;
   }

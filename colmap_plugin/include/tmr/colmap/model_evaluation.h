@@ -1,0 +1,71 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace tmr {
+
+struct ModelEvaluationOptions {
+  // RANSAC inlier threshold of the sim3 alignment on camera centres, as a
+  // share of the scene scale (RMS distance of the common reference cameras
+  // from their centroid).
+  double inlier_threshold = 0.01;
+  // An image is displaced when its position error after the alignment is
+  // above this share of the scene scale.
+  double displaced_threshold = 0.05;
+  // A wrong merge is flagged when at least this many displaced images form a
+  // rigid part of their own (a second sim3 fits them).
+  int min_wrong_merge_images = 5;
+  // Seed of the RANSAC sampling.
+  unsigned seed = 0;
+
+  bool Check(std::string* error = nullptr) const;
+};
+
+struct ErrorStatistics {
+  double median = 0.0;
+  double p90 = 0.0;
+  double max = 0.0;
+};
+
+// Scores of one model against a reference (ground truth or another model).
+struct ModelEvaluation {
+  std::string model_path;
+  int num_registered_images = 0;
+  int num_points3D = 0;
+  double mean_reprojection_error_px = 0.0;
+  double mean_track_length = 0.0;
+  // Points by track length: index k counts tracks of length k (the last bin
+  // holds all longer ones); indices 0 and 1 stay 0.
+  std::vector<int> track_length_histogram;
+
+  int num_common_images = 0;  // registered in both, matched by name
+  bool aligned = false;       // false: fewer than 3 common images or no fit
+  int num_alignment_inliers = 0;
+  double scene_scale = 0.0;  // in reference units
+  ErrorStatistics rotation_error_deg;
+  ErrorStatistics position_error;  // share of the scene scale
+
+  bool wrong_merge = false;
+  int num_displaced_images = 0;
+  // Median distance of the displaced rigid part from its true place, as a
+  // share of the scene scale, and its rotation against the main part.
+  double displacement = 0.0;
+  double displacement_rotation_deg = 0.0;
+};
+
+// Reads the reference and the model (COLMAP models, binary or text) and
+// scores the model. Throws std::runtime_error for unreadable models.
+ModelEvaluation EvaluateModel(const std::string& reference_path,
+                              const std::string& model_path,
+                              const ModelEvaluationOptions& options);
+
+void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
+                          std::ostream& out);
+void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
+                         const std::string& reference_path, std::ostream& out);
+
+}  // namespace tmr

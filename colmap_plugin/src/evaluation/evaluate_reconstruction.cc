@@ -1,0 +1,189 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "evaluation/evaluate_reconstruction.h"
+
+#include <colmap/estimators/alignment.h>
+#include <colmap/estimators/similarity_transform.h>
+#include <colmap/geometry/sim3.h>
+#include <colmap/math/random.h>
+#include <colmap/optim/loransac.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+namespace tmr {
+namespace {
+
+using Sim3Ransac =
+    colmap::LORANSAC<colmap::SimilarityTransformEstimator<3, true>,
+                     colmap::SimilarityTransformEstimator<3, true>>;
+constexpr int kMaxTrackLengthBin = 30;
+
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const size_t k = static_cast<size_t>(std::lround(q * (values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+ErrorStatistics Statistics(const std::vector<double>& values) {
+  ErrorStatistics s;
+  s.median = Quantile(values, 0.5);
+  s.p90 = Quantile(values, 0.9);
+  s.max =
+      values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  return s;
+}
+
+// Robust sim3 from model centres to reference centres; false if none fits.
+bool AlignCentres(const std::vector<Eigen::Vector3d>& model,
+                  const std::vector<Eigen::Vector3d>& reference,
+                  double max_error, int min_inliers,
+                  colmap::Sim3d* ref_from_model,
+                  std::vector<char>* inlier_mask) {
+  if (model.size() < 3) return false;
+  colmap::RANSACOptions ransac;
+  ransac.max_error = max_error;
+  ransac.min_inlier_ratio = 0.05;
+  ransac.max_num_trials = 2000;
+  Sim3Ransac estimator(ransac);
+  const auto report = estimator.Estimate(model, reference);
+  if (!report.success ||
+      static_cast<int>(report.support.num_inliers) < min_inliers) {
+    return false;
+  }
+  *ref_from_model = colmap::Sim3d::FromMatrix(report.model);
+  *inlier_mask = report.inlier_mask;
+  return true;
+}
+
+}  // namespace
+
+bool ModelEvaluationOptions::Check(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (inlier_threshold <= 0) return fail("inlier_threshold must be > 0");
+  if (displaced_threshold <= inlier_threshold) {
+    return fail("displaced_threshold must be > inlier_threshold");
+  }
+  if (min_wrong_merge_images < 3)
+    return fail("min_wrong_merge_images must be >= 3");
+  return true;
+}
+
+colmap::Reconstruction ReadModel(const std::string& path) {
+  namespace fs = std::filesystem;
+  const bool binary = fs::exists(fs::path(path) / "images.bin");
+  const bool text = fs::exists(fs::path(path) / "images.txt");
+  if (!binary && !text) {
+    throw std::runtime_error(
+        "'" + path + "' is not a COLMAP model (no images.bin or images.txt)");
+  }
+  colmap::Reconstruction reconstruction;
+  try {
+    reconstruction.Read(path);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot read model '" + path + "': " + e.what());
+  }
+  return reconstruction;
+}
+
+ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
+                                       const colmap::Reconstruction& model,
+                                       const ModelEvaluationOptions& options) {
+  std::string error;
+  if (!options.Check(&error)) throw std::invalid_argument(error);
+  ModelEvaluation eval;
+  eval.num_registered_images = static_cast<int>(model.NumRegImages());
+  eval.num_points3D = static_cast<int>(model.NumPoints3D());
+  eval.mean_reprojection_error_px = model.ComputeMeanReprojectionError();
+  eval.mean_track_length = model.ComputeMeanTrackLength();
+  eval.track_length_histogram.assign(kMaxTrackLengthBin + 1, 0);
+  for (const auto& [id, point] : model.Points3D()) {
+    ++eval.track_length_histogram[std::min<size_t>(point.track.Length(),
+                                                   kMaxTrackLengthBin)];
+  }
+
+  const auto common = model.FindCommonRegImageIds(reference);
+  eval.num_common_images = static_cast<int>(common.size());
+  std::vector<Eigen::Vector3d> model_centres, reference_centres;
+  for (const auto& [model_id, reference_id] : common) {
+    model_centres.push_back(model.Image(model_id).ProjectionCenter());
+    reference_centres.push_back(
+        reference.Image(reference_id).ProjectionCenter());
+  }
+  if (common.size() < 3) return eval;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& c : reference_centres) centroid += c;
+  centroid /= reference_centres.size();
+  double sum2 = 0.0;
+  for (const auto& c : reference_centres) sum2 += (c - centroid).squaredNorm();
+  eval.scene_scale = std::sqrt(sum2 / reference_centres.size());
+  if (eval.scene_scale <= 0) return eval;
+
+  colmap::SetPRNGSeed(options.seed);
+  colmap::Sim3d ref_from_model;
+  std::vector<char> inliers;
+  if (!AlignCentres(model_centres, reference_centres,
+                    options.inlier_threshold * eval.scene_scale, 3,
+                    &ref_from_model, &inliers)) {
+    return eval;
+  }
+  eval.aligned = true;
+  eval.num_alignment_inliers =
+      static_cast<int>(std::count(inliers.begin(), inliers.end(), 1));
+
+  const auto errors =
+      colmap::ComputeImageAlignmentError(model, reference, ref_from_model);
+  std::vector<double> rotation, position;
+  std::vector<Eigen::Vector3d> displaced_model, displaced_reference;
+  for (size_t k = 0; k < errors.size(); ++k) {
+    rotation.push_back(errors[k].rotation_error_deg);
+    position.push_back(errors[k].proj_center_error / eval.scene_scale);
+    if (position.back() > options.displaced_threshold) {
+      displaced_model.push_back(model_centres[k]);
+      displaced_reference.push_back(reference_centres[k]);
+    }
+  }
+  eval.rotation_error_deg = Statistics(rotation);
+  eval.position_error = Statistics(position);
+  eval.num_displaced_images = static_cast<int>(displaced_model.size());
+
+  // A wrong merge: the displaced images form a rigid part of their own.
+  colmap::Sim3d part_from_model;
+  std::vector<char> part_inliers;
+  if (eval.num_displaced_images >= options.min_wrong_merge_images &&
+      AlignCentres(displaced_model, displaced_reference,
+                   options.inlier_threshold * eval.scene_scale,
+                   options.min_wrong_merge_images, &part_from_model,
+                   &part_inliers)) {
+    eval.wrong_merge = true;
+    std::vector<double> offsets;
+    for (size_t k = 0; k < displaced_model.size(); ++k) {
+      if (!part_inliers[k]) continue;
+      offsets.push_back(
+          (ref_from_model * displaced_model[k] - displaced_reference[k])
+              .norm() /
+          eval.scene_scale);
+    }
+    eval.displacement = Quantile(offsets, 0.5);
+    eval.displacement_rotation_deg = colmap::RadToDeg(
+        ref_from_model.rotation.angularDistance(part_from_model.rotation));
+  }
+  return eval;
+}
+
+ModelEvaluation EvaluateModel(const std::string& reference_path,
+                              const std::string& model_path,
+                              const ModelEvaluationOptions& options) {
+  const colmap::Reconstruction reference = ReadModel(reference_path);
+  const colmap::Reconstruction model = ReadModel(model_path);
+  ModelEvaluation eval = EvaluateReconstruction(reference, model, options);
+  eval.model_path = model_path;
+  return eval;
+}
+
+}  // namespace tmr

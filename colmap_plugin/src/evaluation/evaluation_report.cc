@@ -1,0 +1,107 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// Table and JSON output of model evaluations.
+#include <iomanip>
+#include <sstream>
+
+#include "tmr/colmap/model_evaluation.h"
+
+namespace tmr {
+namespace {
+
+std::string JsonString(const std::string& s) {
+  std::ostringstream out;
+  out << '"';
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out << '\\' << c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c)
+          << std::dec << std::setfill(' ');
+    } else {
+      out << c;
+    }
+  }
+  out << '"';
+  return out.str();
+}
+
+void JsonStats(std::ostream& out, const char* name, const ErrorStatistics& s) {
+  out << "\"" << name << "\": {\"median\": " << s.median
+      << ", \"p90\": " << s.p90 << ", \"max\": " << s.max << "}";
+}
+
+}  // namespace
+
+void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
+                          std::ostream& out) {
+  out << std::left << std::setw(28) << "model" << std::right << std::setw(7)
+      << "images" << std::setw(9) << "points" << std::setw(8) << "reproj"
+      << std::setw(7) << "common" << std::setw(10) << "rot med" << std::setw(10)
+      << "rot p90" << std::setw(10) << "pos med" << std::setw(10) << "pos p90"
+      << std::setw(10) << "pos max"
+      << "  wrong merge\n";
+  out << std::fixed;
+  for (const ModelEvaluation& e : evaluations) {
+    std::string name = e.model_path;
+    if (name.size() > 27) name = "..." + name.substr(name.size() - 24);
+    out << std::left << std::setw(28) << name << std::right << std::setw(7)
+        << e.num_registered_images << std::setw(9) << e.num_points3D
+        << std::setprecision(3) << std::setw(8) << e.mean_reprojection_error_px
+        << std::setw(7) << e.num_common_images;
+    if (e.aligned) {
+      out << std::setprecision(3) << std::setw(9) << e.rotation_error_deg.median
+          << "°" << std::setw(9) << e.rotation_error_deg.p90 << "°"
+          << std::setprecision(2) << std::setw(9)
+          << 100 * e.position_error.median << "%" << std::setw(9)
+          << 100 * e.position_error.p90 << "%" << std::setw(9)
+          << 100 * e.position_error.max << "%";
+    } else {
+      out << std::setw(50) << "not aligned";
+    }
+    if (e.wrong_merge) {
+      out << "  YES: " << e.num_displaced_images << " images displaced by "
+          << std::setprecision(1) << 100 * e.displacement
+          << "% of scale, rotated " << e.displacement_rotation_deg << "°";
+    } else {
+      out << "  no";
+    }
+    out << "\n";
+  }
+  out << std::defaultfloat
+      << "(rotation in degrees; position as a share of the scene scale: the "
+         "RMS distance of\n"
+         " the reference cameras from their centroid)\n";
+}
+
+void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
+                         const std::string& reference_path, std::ostream& out) {
+  out << std::setprecision(9);
+  out << "{\"reference\": " << JsonString(reference_path) << ", \"models\": [";
+  for (size_t i = 0; i < evaluations.size(); ++i) {
+    const ModelEvaluation& e = evaluations[i];
+    out << (i ? ",\n  " : "\n  ") << "{\"model\": " << JsonString(e.model_path)
+        << ", \"registered_images\": " << e.num_registered_images
+        << ", \"points3D\": " << e.num_points3D
+        << ", \"mean_reprojection_error_px\": " << e.mean_reprojection_error_px
+        << ", \"mean_track_length\": " << e.mean_track_length
+        << ", \"common_images\": " << e.num_common_images
+        << ", \"aligned\": " << (e.aligned ? "true" : "false")
+        << ", \"alignment_inliers\": " << e.num_alignment_inliers
+        << ", \"scene_scale\": " << e.scene_scale << ", ";
+    JsonStats(out, "rotation_error_deg", e.rotation_error_deg);
+    out << ", ";
+    JsonStats(out, "position_error_relative", e.position_error);
+    out << ", \"wrong_merge\": " << (e.wrong_merge ? "true" : "false")
+        << ", \"displaced_images\": " << e.num_displaced_images
+        << ", \"displacement_relative\": " << e.displacement
+        << ", \"displacement_rotation_deg\": " << e.displacement_rotation_deg
+        << ", \"track_length_histogram\": [";
+    for (size_t k = 0; k < e.track_length_histogram.size(); ++k) {
+      out << (k ? ", " : "") << e.track_length_histogram[k];
+    }
+    out << "]}";
+  }
+  out << "\n]}\n";
+}
+
+}  // namespace tmr

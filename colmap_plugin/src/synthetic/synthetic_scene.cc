@@ -1,0 +1,263 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/colmap/synthetic_scene.h"
+
+#include <colmap/estimators/two_view_geometry.h>
+#include <colmap/scene/database.h>
+#include <colmap/scene/reconstruction.h>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include "synthetic/observations.h"
+#include "synthetic/scene_layout.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+using synthetic::ImageIntrinsics;
+using synthetic::ImageKeypoints;
+using synthetic::ImagePairMatches;
+
+std::string ImageName(const std::string& part, int index) {
+  char number[16];
+  std::snprintf(number, sizeof(number), "%06d", index);
+  return part + "/" + number + ".jpg";
+}
+
+colmap::Camera MakeCamera(const ImageIntrinsics& k, double focal_px) {
+  colmap::Camera camera = colmap::Camera::CreateFromModelName(
+      colmap::kInvalidCameraId, "SIMPLE_RADIAL", focal_px, k.width, k.height);
+  camera.has_prior_focal_length = true;
+  return camera;
+}
+
+// Raw matches: the inliers plus random outlier pairs of keypoints.
+colmap::FeatureMatches RawMatches(const ImagePairMatches& pair, int n1, int n2,
+                                  const SyntheticSceneOptions& options) {
+  colmap::FeatureMatches matches;
+  for (const auto& m : pair.inliers)
+    matches.emplace_back(m.keypoint1, m.keypoint2);
+  const int num_outliers = static_cast<int>(
+      std::lround(options.outlier_match_ratio * pair.inliers.size()));
+  for (int j = 0; j < num_outliers; ++j) {
+    const double u1 =
+        synthetic::HashUniform(options.seed, pair.image1, pair.image2, 2 * j);
+    const double u2 = synthetic::HashUniform(options.seed, pair.image1,
+                                             pair.image2, 2 * j + 1);
+    matches.emplace_back(static_cast<uint32_t>(u1 * n1),
+                         static_cast<uint32_t>(u2 * n2));
+  }
+  return matches;
+}
+
+// The ground truth: true cameras and poses, and the points that take part in
+// at least two matched detections.
+colmap::Reconstruction GroundTruth(
+    const synthetic::SceneLayout& layout,
+    const std::vector<synthetic::ScenePoint>& points,
+    const std::vector<ImageIntrinsics>& intrinsics,
+    const std::vector<ImageKeypoints>& keypoints,
+    const std::vector<ImagePairMatches>& pairs,
+    const std::vector<std::string>& names) {
+  colmap::Reconstruction gt;
+  const int num_images = static_cast<int>(names.size());
+  for (int i = 0; i < num_images; ++i) {
+    colmap::Camera camera = MakeCamera(intrinsics[i], intrinsics[i].focal_px);
+    camera.camera_id = i + 1;
+    gt.AddCamera(camera);
+    colmap::Image image;
+    image.SetImageId(i + 1);
+    image.SetCameraId(i + 1);
+    image.SetName(names[i]);
+    const Eigen::Quaterniond rotation(layout.cameras[i].cam_from_world);
+    image.CamFromWorld() = colmap::Rigid3d(
+        rotation,
+        -(layout.cameras[i].cam_from_world * layout.cameras[i].center));
+    image.SetPoints2D(keypoints[i].xy);
+    gt.AddImage(std::move(image));
+    gt.RegisterImage(i + 1);
+  }
+  // Tracks: detections that take part in a true verified match.
+  std::vector<std::vector<bool>> matched(num_images);
+  for (int i = 0; i < num_images; ++i) {
+    matched[i].assign(keypoints[i].xy.size(), false);
+  }
+  for (const ImagePairMatches& pair : pairs) {
+    if (pair.is_false) continue;
+    for (const auto& m : pair.inliers) {
+      matched[pair.image1][m.keypoint1] = true;
+      matched[pair.image2][m.keypoint2] = true;
+    }
+  }
+  std::vector<colmap::Track> tracks(points.size());
+  for (int i = 0; i < num_images; ++i) {
+    for (uint32_t k = 0; k < keypoints[i].point.size(); ++k) {
+      const int p = keypoints[i].point[k];
+      if (p >= 0 && matched[i][k]) tracks[p].AddElement(i + 1, k);
+    }
+  }
+  for (size_t p = 0; p < points.size(); ++p) {
+    if (tracks[p].Length() >= 2) gt.AddPoint3D(points[p].xyz, tracks[p]);
+  }
+  return gt;
+}
+
+}  // namespace
+
+bool SyntheticSceneOptions::Check(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (family != "places" && family != "street" && family != "city") {
+    return fail("family must be places, street or city, not '" + family + "'");
+  }
+  if (street_gap != "none" && street_gap != "removed" &&
+      street_gap != "thinned") {
+    return fail("street_gap must be none, removed or thinned");
+  }
+  if (num_places < 1 || cameras_per_place < 3 || num_unlinked_places < 0) {
+    return fail(
+        "need num_places >= 1, cameras_per_place >= 3, num_unlinked_places >= "
+        "0");
+  }
+  if (link_spacing < 0 || place_distance < 60) {
+    return fail("need link_spacing >= 0 and place_distance >= 60");
+  }
+  if (street_length <= 0 ||
+      !(0 <= gap_begin && gap_begin < gap_end && gap_end <= 1) ||
+      gap_thinning < 1) {
+    return fail(
+        "need street_length > 0, 0 <= gap_begin < gap_end <= 1, gap_thinning "
+        ">= 1");
+  }
+  if (city_blocks_x < 1 || city_blocks_y < 1)
+    return fail("city needs >= 1 x 1 blocks");
+  if (camera_spacing <= 0) return fail("camera_spacing must be > 0");
+  if (image_width < 16 || image_height < 16)
+    return fail("image size must be >= 16 px");
+  if (min_focal_px <= 0 || max_focal_px < min_focal_px) {
+    return fail("need 0 < min_focal_px <= max_focal_px");
+  }
+  if (focal_prior_error < 0 || focal_prior_error > 0.5) {
+    return fail("focal_prior_error must be in [0, 0.5]");
+  }
+  if (point_density <= 0 || max_range <= 0)
+    return fail("point_density and max_range must be > 0");
+  if (max_view_angle_deg <= 0 || max_view_angle_deg > 90 ||
+      max_match_angle_deg <= 0 || max_match_angle_deg > 180 ||
+      max_scale_ratio < 1) {
+    return fail(
+        "view angle in (0, 90], match angle in (0, 180], scale ratio >= 1");
+  }
+  for (const double p : {detection_probability, match_probability}) {
+    if (p <= 0 || p > 1) return fail("probabilities must be in (0, 1]");
+  }
+  if (keypoint_noise_px < 0 || unmatched_keypoint_ratio < 0 ||
+      outlier_match_ratio < 0 || false_pairs_per_100_images < 0) {
+    return fail("noise, ratios and false pair rate must be >= 0");
+  }
+  if (max_pairs_per_image < 0 || min_num_inliers < 1) {
+    return fail("need max_pairs_per_image >= 0 and min_num_inliers >= 1");
+  }
+  return true;
+}
+
+bool WriteSyntheticScene(const SyntheticSceneOptions& options,
+                         const std::string& database_path,
+                         const std::string& model_path,
+                         SyntheticSceneSummary* summary, std::string* error) {
+  if (!options.Check(error)) return false;
+  if (fs::exists(database_path)) {
+    *error = "database '" + database_path + "' already exists";
+    return false;
+  }
+  std::error_code ec;
+  const fs::path parent = fs::path(database_path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (!model_path.empty()) fs::create_directories(model_path, ec);
+  if (ec) {
+    *error = "cannot create output folders: " + ec.message();
+    return false;
+  }
+
+  std::mt19937_64 rng(options.seed);
+  const synthetic::SceneLayout layout =
+      synthetic::BuildSceneLayout(options, rng);
+  const auto points =
+      synthetic::SampleScenePoints(layout.boxes, options.point_density, rng);
+  const int num_images = static_cast<int>(layout.cameras.size());
+  if (num_images < 2) {
+    *error = "the options give fewer than two cameras";
+    return false;
+  }
+  std::vector<ImageIntrinsics> intrinsics(num_images);
+  std::vector<double> prior_focal(num_images);
+  std::vector<std::string> names(num_images);
+  std::uniform_real_distribution<double> focal(options.min_focal_px,
+                                               options.max_focal_px);
+  std::normal_distribution<double> prior_noise(0.0, options.focal_prior_error);
+  for (int i = 0; i < num_images; ++i) {
+    intrinsics[i] = {focal(rng), options.image_width, options.image_height};
+    prior_focal[i] = intrinsics[i].focal_px * (1.0 + prior_noise(rng));
+    names[i] = ImageName(layout.cameras[i].part, i);
+  }
+  const auto keypoints =
+      synthetic::DetectKeypoints(layout, points, intrinsics, options);
+  const auto pairs =
+      synthetic::MatchKeypoints(layout, points, keypoints, options);
+
+  {
+    colmap::Database database(database_path);
+    colmap::DatabaseTransaction transaction(&database);
+    for (int i = 0; i < num_images; ++i) {
+      const colmap::camera_t camera_id =
+          database.WriteCamera(MakeCamera(intrinsics[i], prior_focal[i]));
+      colmap::Image image;
+      image.SetName(names[i]);
+      image.SetCameraId(camera_id);
+      const colmap::image_t image_id = database.WriteImage(image);
+      colmap::FeatureKeypoints feature_keypoints;
+      feature_keypoints.reserve(keypoints[i].xy.size());
+      for (const Eigen::Vector2d& xy : keypoints[i].xy) {
+        feature_keypoints.emplace_back(xy.x(), xy.y());
+      }
+      database.WriteKeypoints(image_id, feature_keypoints);
+    }
+    for (const ImagePairMatches& pair : pairs) {
+      const int n1 = keypoints[pair.image1].xy.size();
+      const int n2 = keypoints[pair.image2].xy.size();
+      database.WriteMatches(pair.image1 + 1, pair.image2 + 1,
+                            RawMatches(pair, n1, n2, options));
+      colmap::TwoViewGeometry geometry;
+      geometry.config = colmap::TwoViewGeometry::CALIBRATED;
+      for (const auto& m : pair.inliers) {
+        geometry.inlier_matches.emplace_back(m.keypoint1, m.keypoint2);
+      }
+      database.WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1, geometry);
+    }
+  }
+
+  const colmap::Reconstruction gt =
+      GroundTruth(layout, points, intrinsics, keypoints, pairs, names);
+  if (!model_path.empty()) gt.WriteBinary(model_path);
+  if (summary) {
+    *summary = SyntheticSceneSummary();
+    summary->num_images = num_images;
+    summary->num_points3D = static_cast<int>(gt.NumPoints3D());
+    for (const ImagePairMatches& pair : pairs) {
+      ++(pair.is_false ? summary->num_false_pairs
+                       : summary->num_verified_pairs);
+    }
+    double total_keypoints = 0;
+    for (const ImageKeypoints& k : keypoints) total_keypoints += k.xy.size();
+    summary->mean_keypoints_per_image = total_keypoints / num_images;
+    summary->mean_track_length = gt.ComputeMeanTrackLength();
+  }
+  return true;
+}
+
+}  // namespace tmr
