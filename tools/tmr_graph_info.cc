@@ -4,6 +4,7 @@
 #include <boost/program_options.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <iostream>
 
 #include "tmr/io/database_reader.h"
@@ -13,7 +14,7 @@
 namespace po = boost::program_options;
 
 int main(int argc, char** argv) {
-  std::string database_path;
+  std::string database_path, histogram_csv;
   tmr::MatchGraphOptions options;
   po::options_description desc(
       "tmr_graph_info: summary of the match graph of a COLMAP database");
@@ -23,7 +24,9 @@ int main(int argc, char** argv) {
       "min_num_matches",
       po::value(&options.min_num_matches)
           ->default_value(options.min_num_matches),
-      "minimum inlier matches for a pair to count");
+      "minimum inlier matches for a pair to count")(
+      "histogram_csv", po::value(&histogram_csv),
+      "write the histogram of s_ij (50 bins over [0, 1]) as CSV");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
@@ -48,6 +51,21 @@ int main(int argc, char** argv) {
     tmr::PrintGraphSummary(tmr::SummarizeGraph(match_graph, similarity),
                            std::cout);
     std::cout << "read + S in       " << seconds << " s\n";
+    if (!histogram_csv.empty()) {
+      const tmr::GraphSummary fine = tmr::SummarizeGraph(
+          match_graph, similarity, /*num_histogram_bins=*/50);
+      std::ofstream out(histogram_csv);
+      out << "bin_low,bin_high,count,fraction\n";
+      for (int b = 0; b < 50; ++b) {
+        const int count = fine.similarity_histogram[b];
+        out << b / 50.0 << "," << (b + 1) / 50.0 << "," << count << ","
+            << (fine.num_pairs ? static_cast<double>(count) / fine.num_pairs
+                               : 0.0)
+            << "\n";
+      }
+      if (!out)
+        throw std::runtime_error("cannot write '" + histogram_csv + "'");
+    }
   } catch (const std::exception& e) {
     std::cerr << "tmr_graph_info: error: " << e.what() << "\n";
     return 1;

@@ -107,6 +107,7 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
                                                    kMaxTrackLengthBin)];
   }
 
+  eval.num_reference_images = static_cast<int>(reference.NumRegImages());
   const auto common = model.FindCommonRegImageIds(reference);
   eval.num_common_images = static_cast<int>(common.size());
   std::vector<Eigen::Vector3d> model_centres, reference_centres;

@@ -84,6 +84,7 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
         << ", \"points3D\": " << e.num_points3D
         << ", \"mean_reprojection_error_px\": " << e.mean_reprojection_error_px
         << ", \"mean_track_length\": " << e.mean_track_length
+        << ", \"reference_images\": " << e.num_reference_images
         << ", \"common_images\": " << e.num_common_images
         << ", \"aligned\": " << (e.aligned ? "true" : "false")
         << ", \"alignment_inliers\": " << e.num_alignment_inliers

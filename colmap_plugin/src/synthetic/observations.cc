@@ -91,15 +91,18 @@ void ForEachMatch(const std::vector<std::vector<Detection>>& detections,
                   const SyntheticSceneOptions& options, F&& f) {
   const float min_cos = std::cos(options.max_match_angle_deg * kPi / 180);
   const float max_ratio = options.max_scale_ratio;
+  const double falloff = options.match_angle_falloff_deg * kPi / 180;
   for (size_t p = 0; p < detections.size(); ++p) {
     const auto& d = detections[p];
     for (size_t a = 0; a < d.size(); ++a) {
       for (size_t b = a + 1; b < d.size(); ++b) {
-        if (d[a].ray.dot(d[b].ray) < min_cos) continue;
+        const float cos_angle = d[a].ray.dot(d[b].ray);
+        if (cos_angle < min_cos) continue;
         const float ratio = d[a].distance / d[b].distance;
         if (ratio > max_ratio || ratio * max_ratio < 1) continue;
+        const double angle = std::acos(std::min(1.0f, cos_angle)) / falloff;
         if (HashUniform(options.seed, p, d[a].image, d[b].image) >=
-            options.match_probability) {
+            options.match_probability * std::exp(-0.5 * angle * angle)) {
           continue;
         }
         f(d[a], d[b]);

@@ -125,8 +125,9 @@ void PrintGraphSummary(const GraphSummary& s, std::ostream& out) {
       const int bar =
           peak > 0 ? (40 * s.similarity_histogram[b] + peak - 1) / peak : 0;
       out << "  [" << static_cast<double>(b) / bins << ", "
-          << static_cast<double>(b + 1) / bins << ") " << std::setw(8)
-          << s.similarity_histogram[b] << " " << std::string(bar, '#') << "\n";
+          << static_cast<double>(b + 1) / bins << (b + 1 == bins ? "] " : ") ")
+          << std::setw(8) << s.similarity_histogram[b] << " "
+          << std::string(bar, '#') << "\n";
     }
   }
   out << std::defaultfloat;

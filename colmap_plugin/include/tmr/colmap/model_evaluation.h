@@ -42,8 +42,9 @@ struct ModelEvaluation {
   // holds all longer ones); indices 0 and 1 stay 0.
   std::vector<int> track_length_histogram;
 
-  int num_common_images = 0;  // registered in both, matched by name
-  bool aligned = false;       // false: fewer than 3 common images or no fit
+  int num_reference_images = 0;  // registered in the reference
+  int num_common_images = 0;     // registered in both, matched by name
+  bool aligned = false;          // false: fewer than 3 common images or no fit
   int num_alignment_inliers = 0;
   double scene_scale = 0.0;  // in reference units
   ErrorStatistics rotation_error_deg;

@@ -83,8 +83,11 @@ struct SyntheticSceneOptions {
   double unmatched_keypoint_ratio = 0.5;
   // Two detections of a point match only if the viewing directions differ by
   // less than max_match_angle and the distances by less than
-  // max_scale_ratio, and then with probability match_probability.
-  double max_match_angle_deg = 45.0;
+  // max_scale_ratio, and then with probability
+  // match_probability * exp(-angle^2 / (2 * match_angle_falloff^2)), as
+  // descriptors tolerate a viewpoint change less the larger it is.
+  double max_match_angle_deg = 60.0;
+  double match_angle_falloff_deg = 25.0;
   double max_scale_ratio = 3.0;
   double match_probability = 0.9;
   // Image retrieval: each image is matched with the images that share the
