@@ -1,0 +1,41 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tmr/scene/image_graph.h"
+
+namespace tmr {
+
+struct MultiLayerShortestPathOptions {
+  // Number of layers L: [min d, max d] is cut into L equal steps (Eq. 6).
+  int num_layers = 20;
+
+  bool Check(std::string* error = nullptr) const;
+};
+
+struct ImageClusters {
+  // Cluster (kernel index) of every image, -1 when it reaches no exemplar.
+  std::vector<int> cluster;
+  // Layer (1-based) in which the image was assigned; 0 for kernel images and
+  // unclustered ones.
+  std::vector<int> layer;
+  // Length of its optimal reconstruction path to the exemplar (sum of d).
+  std::vector<double> path_length;
+};
+
+// Image clustering by Multi-layer Shortest Path (paper Sec. 4.2, Eq. 6) on
+// the difference graph D. Layer t keeps the edges with d < phi_t =
+// min d + t * (max d - min d) / L (the last layer keeps all edges). In each
+// layer one multi-source Dijkstra (Boost.Graph) from all exemplars assigns
+// every still unassigned image that now reaches an exemplar to the nearest
+// one; it keeps that cluster in later layers. Kernel images belong to their
+// kernel from the start. Paths found in an early layer avoid weak overlaps
+// (large d), as the paper's Fig. 5 asks.
+ImageClusters AssignByMultiLayerShortestPath(
+    const ImageGraph& difference, const std::vector<std::vector<int>>& kernels,
+    const std::vector<int>& exemplars,
+    const MultiLayerShortestPathOptions& options);
+
+}  // namespace tmr

@@ -1,0 +1,82 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "tmr/partition/exemplar.h"
+#include "tmr/partition/image_clustering.h"
+#include "tmr/partition/kernels.h"
+#include "tmr/partition/leaf_clustering.h"
+#include "tmr/scene/match_graph.h"
+
+namespace tmr {
+
+struct TmrTreeOptions {
+  KernelOptions kernels;
+  ExemplarOptions exemplar;
+  MultiLayerShortestPathOptions image_clustering;
+  RadialAgglomerateOptions leaf_clustering;
+  // Seed of every random choice (copied into exemplar.ap.seed).
+  uint64_t seed = 0;
+
+  bool Check(std::string* error = nullptr) const;
+};
+
+// A middle node of the tree: a kernel, its seed images and its image
+// cluster split into leaf clusters. Images are vertex indices of the match
+// graph (TmrTree::image_names gives their names).
+struct TmrKernelNode {
+  std::vector<int> kernel_images;
+  int exemplar = -1;
+  std::vector<int> second_images;  // best first
+  std::vector<int> ap_centres;
+  double exemplar_score = 0.0;
+  KernelOrigin origin = KernelOrigin::kLayer;
+  int layer = 0;
+  std::vector<int> cluster_images;  // kernel and leaves, sorted
+  std::vector<std::vector<int>> leaf_clusters;
+};
+
+struct TmrTreeTiming {
+  double graphs_s = 0.0, kernels_s = 0.0, exemplars_s = 0.0,
+         image_clusters_s = 0.0, leaf_clusters_s = 0.0;
+};
+
+// The Trilaminar Multiway Reconstruction tree (paper Sec. 4): the root is
+// the image set, the middle layer the kernels with their image clusters, the
+// bottom layer the leaf clusters.
+struct TmrTree {
+  std::vector<std::string> image_names;  // by vertex index
+  std::vector<uint32_t> image_ids;       // database ids, by vertex index
+  int kernel_size = 0;                   // m
+  std::vector<TmrKernelNode> kernels;
+  std::vector<int> unclustered;  // images that reach no kernel
+  TmrTreeOptions options;
+  TmrTreeTiming timing;
+};
+
+// Builds S and D (Eq. 1-2) from the match graph, then kernels (Sec. 4.1),
+// exemplars, image clusters by Multi-layer Shortest Path (Sec. 4.2) and leaf
+// clusters by Radial Agglomerate Clustering (Sec. 4.3). Deterministic for a
+// given match graph and options.seed. Throws std::invalid_argument when
+// options.Check() fails.
+TmrTree BuildTmrTree(const MatchGraph& match_graph,
+                     const TmrTreeOptions& options);
+
+// tree.json: per kernel "exemplar", "second_image", "second_images",
+// "kernel_images", "leaf_clusters" (lists of names); top level
+// "unclustered", "kernel_size", "parameters", "timing_s". Images by name.
+void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out);
+
+// Reads tree.json. Images get vertex indices in the order of first
+// appearance in `image_names` if given (the match graph's names), else in
+// order of first appearance in the file. Throws std::runtime_error with the
+// problem for malformed input.
+TmrTree ReadTmrTreeJson(std::istream& in,
+                        const std::vector<std::string>& image_names = {});
+
+}  // namespace tmr

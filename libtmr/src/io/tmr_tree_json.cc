@@ -1,0 +1,217 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// tree.json reading and writing (nlohmann::json, private to libtmr).
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "tmr/partition/tmr_tree.h"
+
+namespace tmr {
+namespace {
+
+using nlohmann::json;
+
+const char* OriginName(KernelOrigin origin) {
+  switch (origin) {
+    case KernelOrigin::kLayer:
+      return "layer";
+    case KernelOrigin::kCarved:
+      return "carved";
+    case KernelOrigin::kRescue:
+      return "rescue";
+  }
+  return "layer";
+}
+
+KernelOrigin OriginFromName(const std::string& name) {
+  if (name == "carved") return KernelOrigin::kCarved;
+  if (name == "rescue") return KernelOrigin::kRescue;
+  if (name == "layer") return KernelOrigin::kLayer;
+  throw std::runtime_error("unknown kernel origin '" + name + "'");
+}
+
+json Names(const TmrTree& tree, const std::vector<int>& images) {
+  json names = json::array();
+  for (const int v : images) names.push_back(tree.image_names.at(v));
+  return names;
+}
+
+json Parameters(const TmrTreeOptions& o) {
+  return {{"seed", o.seed},
+          {"kernels",
+           {{"max_kernel_size", o.kernels.max_kernel_size},
+            {"kernel_fraction", o.kernels.kernel_fraction},
+            {"alpha", o.kernels.alpha},
+            {"num_layers", o.kernels.num_layers},
+            {"epsilon", o.kernels.epsilon},
+            {"min_kernel_size", o.kernels.min_kernel_size},
+            {"max_recursion_depth", o.kernels.max_recursion_depth}}},
+          {"exemplar",
+           {{"beta1", o.exemplar.beta1},
+            {"beta2", o.exemplar.beta2},
+            {"ap_damping", o.exemplar.ap.damping},
+            {"ap_max_iterations", o.exemplar.ap.max_iterations},
+            {"ap_convergence_iterations", o.exemplar.ap.convergence_iterations},
+            {"num_second_images", o.exemplar.num_second_images}}},
+          {"image_clustering", {{"num_layers", o.image_clustering.num_layers}}},
+          {"leaf_clustering",
+           {{"r", o.leaf_clustering.r},
+            {"sigma",
+             {o.leaf_clustering.sigma1, o.leaf_clustering.sigma2,
+              o.leaf_clustering.sigma3, o.leaf_clustering.sigma4}}}}};
+}
+
+// Reads an optional value of the expected type.
+template <typename T>
+void Get(const json& object, const char* key, T* value) {
+  if (!object.is_object() || !object.contains(key)) return;
+  *value = object.at(key).get<T>();
+}
+
+TmrTreeOptions ParametersFromJson(const json& p) {
+  TmrTreeOptions o;
+  Get(p, "seed", &o.seed);
+  if (p.contains("kernels")) {
+    const json& k = p.at("kernels");
+    Get(k, "max_kernel_size", &o.kernels.max_kernel_size);
+    Get(k, "kernel_fraction", &o.kernels.kernel_fraction);
+    Get(k, "alpha", &o.kernels.alpha);
+    Get(k, "num_layers", &o.kernels.num_layers);
+    Get(k, "epsilon", &o.kernels.epsilon);
+    Get(k, "min_kernel_size", &o.kernels.min_kernel_size);
+    Get(k, "max_recursion_depth", &o.kernels.max_recursion_depth);
+  }
+  if (p.contains("exemplar")) {
+    const json& e = p.at("exemplar");
+    Get(e, "beta1", &o.exemplar.beta1);
+    Get(e, "beta2", &o.exemplar.beta2);
+    Get(e, "ap_damping", &o.exemplar.ap.damping);
+    Get(e, "ap_max_iterations", &o.exemplar.ap.max_iterations);
+    Get(e, "ap_convergence_iterations", &o.exemplar.ap.convergence_iterations);
+    Get(e, "num_second_images", &o.exemplar.num_second_images);
+  }
+  if (p.contains("image_clustering")) {
+    Get(p.at("image_clustering"), "num_layers", &o.image_clustering.num_layers);
+  }
+  if (p.contains("leaf_clustering")) {
+    const json& l = p.at("leaf_clustering");
+    Get(l, "r", &o.leaf_clustering.r);
+    if (l.contains("sigma")) {
+      const auto sigma = l.at("sigma").get<std::vector<double>>();
+      if (sigma.size() != 4)
+        throw std::runtime_error("leaf_clustering.sigma needs 4 values");
+      o.leaf_clustering.sigma1 = sigma[0];
+      o.leaf_clustering.sigma2 = sigma[1];
+      o.leaf_clustering.sigma3 = sigma[2];
+      o.leaf_clustering.sigma4 = sigma[3];
+    }
+  }
+  o.exemplar.ap.seed = o.seed;
+  return o;
+}
+
+}  // namespace
+
+void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
+  json kernels = json::array();
+  for (const TmrKernelNode& node : tree.kernels) {
+    json leaf_clusters = json::array();
+    for (const auto& leaf : node.leaf_clusters)
+      leaf_clusters.push_back(Names(tree, leaf));
+    kernels.push_back({{"exemplar", tree.image_names.at(node.exemplar)},
+                       {"second_image",
+                        node.second_images.empty()
+                            ? json(nullptr)
+                            : json(tree.image_names.at(node.second_images[0]))},
+                       {"second_images", Names(tree, node.second_images)},
+                       {"ap_centres", Names(tree, node.ap_centres)},
+                       {"exemplar_score", node.exemplar_score},
+                       {"origin", OriginName(node.origin)},
+                       {"layer", node.layer},
+                       {"kernel_images", Names(tree, node.kernel_images)},
+                       {"leaf_clusters", std::move(leaf_clusters)}});
+  }
+  const json root = {{"format", "tmr-tree"},
+                     {"version", 1},
+                     {"num_images", tree.image_names.size()},
+                     {"kernel_size", tree.kernel_size},
+                     {"kernels", std::move(kernels)},
+                     {"unclustered", Names(tree, tree.unclustered)},
+                     {"parameters", Parameters(tree.options)},
+                     {"timing_s",
+                      {{"graphs", tree.timing.graphs_s},
+                       {"kernels", tree.timing.kernels_s},
+                       {"exemplars", tree.timing.exemplars_s},
+                       {"image_clusters", tree.timing.image_clusters_s},
+                       {"leaf_clusters", tree.timing.leaf_clusters_s}}}};
+  out << root.dump(1) << "\n";
+}
+
+TmrTree ReadTmrTreeJson(std::istream& in,
+                        const std::vector<std::string>& image_names) {
+  TmrTree tree;
+  tree.image_names = image_names;
+  std::unordered_map<std::string, int> index;
+  for (size_t i = 0; i < image_names.size(); ++i)
+    index.emplace(image_names[i], i);
+  auto vertex = [&](const json& name) {
+    if (!name.is_string())
+      throw std::runtime_error("an image name is not a string");
+    const std::string& s = name.get_ref<const std::string&>();
+    const auto it = index.find(s);
+    if (it != index.end()) return it->second;
+    if (!image_names.empty())
+      throw std::runtime_error("unknown image '" + s + "'");
+    index.emplace(s, static_cast<int>(tree.image_names.size()));
+    tree.image_names.push_back(s);
+    return static_cast<int>(tree.image_names.size()) - 1;
+  };
+  auto vertices = [&](const json& names) {
+    if (!names.is_array())
+      throw std::runtime_error("expected a list of image names");
+    std::vector<int> result;
+    for (const json& name : names) result.push_back(vertex(name));
+    return result;
+  };
+  try {
+    const json root = json::parse(in);
+    if (!root.is_object() || root.value("format", "") != "tmr-tree") {
+      throw std::runtime_error(
+          "not a tmr tree (\"format\": \"tmr-tree\" missing)");
+    }
+    tree.kernel_size = root.value("kernel_size", 0);
+    if (root.contains("parameters"))
+      tree.options = ParametersFromJson(root.at("parameters"));
+    for (const json& k : root.at("kernels")) {
+      TmrKernelNode node;
+      node.exemplar = vertex(k.at("exemplar"));
+      node.kernel_images = vertices(k.at("kernel_images"));
+      if (k.contains("second_images")) {
+        node.second_images = vertices(k.at("second_images"));
+      } else if (k.contains("second_image") &&
+                 !k.at("second_image").is_null()) {
+        node.second_images = {vertex(k.at("second_image"))};
+      }
+      if (k.contains("ap_centres"))
+        node.ap_centres = vertices(k.at("ap_centres"));
+      node.exemplar_score = k.value("exemplar_score", 0.0);
+      node.origin = OriginFromName(k.value("origin", "layer"));
+      node.layer = k.value("layer", 0);
+      for (const json& leaf : k.at("leaf_clusters"))
+        node.leaf_clusters.push_back(vertices(leaf));
+      node.cluster_images = node.kernel_images;
+      for (const auto& leaf : node.leaf_clusters) {
+        node.cluster_images.insert(node.cluster_images.end(), leaf.begin(),
+                                   leaf.end());
+      }
+      std::sort(node.cluster_images.begin(), node.cluster_images.end());
+      tree.kernels.push_back(std::move(node));
+    }
+    tree.unclustered = vertices(root.at("unclustered"));
+  } catch (const json::exception& e) {
+    throw std::runtime_error(std::string("malformed tree.json: ") + e.what());
+  }
+  return tree;
+}
+
+}  // namespace tmr

@@ -1,0 +1,130 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/image_clustering.h"
+
+#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+#include <boost/graph/filtered_graph.hpp>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace tmr {
+namespace {
+
+struct EdgeWeight {
+  double weight;
+};
+using CsrGraph =
+    boost::compressed_sparse_row_graph<boost::directedS, boost::no_property,
+                                       EdgeWeight>;
+using Edge = boost::graph_traits<CsrGraph>::edge_descriptor;
+
+// Keeps the edges whose weight is below the layer's threshold.
+struct BelowThreshold {
+  const CsrGraph* graph = nullptr;
+  double threshold = 0.0;
+  bool inclusive = false;
+  bool operator()(const Edge& e) const {
+    const double w = (*graph)[e].weight;
+    return inclusive ? w <= threshold : w < threshold;
+  }
+};
+
+CsrGraph ToCsr(const ImageGraph& graph) {
+  std::vector<std::pair<int, int>> edges;
+  std::vector<EdgeWeight> weights;
+  edges.reserve(2 * graph.NumEdges());
+  for (const WeightedEdge& e : graph.Edges()) {
+    edges.emplace_back(e.u, e.v);
+    edges.emplace_back(e.v, e.u);
+    weights.push_back({e.weight});
+    weights.push_back({e.weight});
+  }
+  return CsrGraph(boost::edges_are_unsorted_multi_pass, edges.begin(),
+                  edges.end(), weights.begin(), graph.NumVertices());
+}
+
+}  // namespace
+
+bool MultiLayerShortestPathOptions::Check(std::string* error) const {
+  if (num_layers < 1) {
+    if (error) *error = "num_layers must be >= 1";
+    return false;
+  }
+  return true;
+}
+
+ImageClusters AssignByMultiLayerShortestPath(
+    const ImageGraph& difference, const std::vector<std::vector<int>>& kernels,
+    const std::vector<int>& exemplars,
+    const MultiLayerShortestPathOptions& options) {
+  std::string error;
+  if (!options.Check(&error))
+    throw std::invalid_argument("MultiLayerShortestPath: " + error);
+  if (kernels.size() != exemplars.size()) {
+    throw std::invalid_argument(
+        "AssignByMultiLayerShortestPath: one exemplar per kernel");
+  }
+  const int n = difference.NumVertices();
+  ImageClusters result;
+  result.cluster.assign(n, -1);
+  result.layer.assign(n, 0);
+  result.path_length.assign(n, std::numeric_limits<double>::infinity());
+  std::vector<int> source_cluster(n, -1);
+  for (size_t k = 0; k < kernels.size(); ++k) {
+    for (const int v : kernels[k]) result.cluster.at(v) = static_cast<int>(k);
+    source_cluster.at(exemplars[k]) = static_cast<int>(k);
+  }
+  if (exemplars.empty() || difference.NumEdges() == 0) return result;
+
+  const CsrGraph graph = ToCsr(difference);
+  const double min_d = difference.MinWeight();
+  const double step = (difference.MaxWeight() - min_d) / options.num_layers;
+  std::vector<double> distance(n);
+  std::vector<int> predecessor(n);
+  auto index = boost::get(boost::vertex_index, graph);
+  for (int t = 1; t <= options.num_layers; ++t) {
+    const bool last = t == options.num_layers;
+    const BelowThreshold keep{
+        &graph, last ? difference.MaxWeight() : min_d + t * step, last};
+    const boost::filtered_graph<CsrGraph, BelowThreshold> layer(graph, keep);
+    boost::dijkstra_shortest_paths(
+        layer, exemplars.begin(), exemplars.end(),
+        boost::make_iterator_property_map(predecessor.begin(), index),
+        boost::make_iterator_property_map(distance.begin(), index),
+        boost::get(&EdgeWeight::weight, graph), index, std::less<double>(),
+        boost::closed_plus<double>(), std::numeric_limits<double>::infinity(),
+        0.0, boost::default_dijkstra_visitor());
+    // The exemplar an image was reached from: follow predecessors.
+    std::vector<int> reached_from(n, -2);
+    auto origin = [&](int v) {
+      std::vector<int> chain;
+      while (reached_from[v] == -2 && source_cluster[v] < 0 &&
+             predecessor[v] != v) {
+        chain.push_back(v);
+        v = predecessor[v];
+      }
+      const int label =
+          reached_from[v] != -2 ? reached_from[v] : source_cluster[v];
+      for (const int u : chain) reached_from[u] = label;
+      reached_from[v] = label;
+      return label;
+    };
+    for (int v = 0; v < n; ++v) {
+      if (distance[v] == std::numeric_limits<double>::infinity()) continue;
+      if (result.cluster[v] >= 0) {  // a kernel image or assigned earlier
+        if (result.layer[v] == 0 && result.path_length[v] == INFINITY) {
+          result.path_length[v] = distance[v];
+        }
+        continue;
+      }
+      result.cluster[v] = origin(v);
+      result.layer[v] = t;
+      result.path_length[v] = distance[v];
+    }
+  }
+  for (const int e : exemplars) result.path_length[e] = 0.0;
+  return result;
+}
+
+}  // namespace tmr

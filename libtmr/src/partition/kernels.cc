@@ -1,0 +1,246 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/kernels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+namespace tmr {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int Find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void Union(int a, int b) {
+    a = Find(a), b = Find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+class KernelSearch {
+ public:
+  KernelSearch(const ImageGraph& s, const KernelOptions& o)
+      : s_(s),
+        o_(o),
+        m_(o.KernelSize(s.NumVertices())),
+        max_size_(std::max(m_, static_cast<int>(std::floor(o.alpha * m_)))),
+        active_(s.NumVertices(), true) {}
+
+  // Searches the active vertices of `vertices` on the layers of [a, b].
+  // Returns the number of kernels found.
+  int Search(const std::vector<int>& vertices, double a, double b, int depth,
+             int outer_layer) {
+    int found = 0;
+    for (int i = 1; i <= o_.num_layers; ++i) {
+      const double theta = a + (b - a) / std::pow(1.5, i - 1);
+      const int layer = depth == 0 ? i : outer_layer;
+      for (const std::vector<int>& component : Components(vertices, theta)) {
+        const int size = static_cast<int>(component.size());
+        if (size >= m_ && size <= max_size_) {
+          AddKernel(component, KernelOrigin::kLayer, layer);
+          ++found;
+        } else if (size > max_size_) {
+          const double b_c = MaxWeightWithin(component);
+          int inner = 0;
+          if (depth < o_.max_recursion_depth && b_c > theta) {
+            inner = Search(component, theta, b_c, depth + 1, layer);
+          }
+          if (inner == 0) {
+            Carve(component, theta, KernelOrigin::kCarved, layer);
+            inner = 1;
+          }
+          found += inner;
+        }
+      }
+    }
+    return found;
+  }
+
+  // Gives a kernel to every connected part of S without one.
+  void Rescue() {
+    std::vector<int> all(s_.NumVertices());
+    std::iota(all.begin(), all.end(), 0);
+    std::vector<bool> has_kernel(s_.NumVertices(), false);
+    for (const Kernel& k : kernels_) {
+      for (const int v : k.images) has_kernel[v] = true;
+    }
+    // Components of S with all edges; parts without a kernel are all free.
+    std::fill(active_.begin(), active_.end(), true);
+    for (const std::vector<int>& part : Components(all, -1.0)) {
+      if (static_cast<int>(part.size()) < o_.min_kernel_size) continue;
+      if (std::any_of(part.begin(), part.end(),
+                      [&](int v) { return has_kernel[v]; })) {
+        continue;
+      }
+      Carve(part, -1.0, KernelOrigin::kRescue, o_.num_layers);
+    }
+  }
+
+  // Kernels sorted by their smallest image.
+  std::vector<Kernel> Take() {
+    std::sort(
+        kernels_.begin(), kernels_.end(),
+        [](const Kernel& x, const Kernel& y) { return x.images < y.images; });
+    return std::move(kernels_);
+  }
+
+ private:
+  // Components (size >= 2) of the active vertices of `vertices` joined by
+  // edges with weight > theta, each sorted, ordered by smallest vertex.
+  std::vector<std::vector<int>> Components(const std::vector<int>& vertices,
+                                           double theta) {
+    in_set_.assign(s_.NumVertices(), false);
+    for (const int v : vertices) in_set_[v] = active_[v];
+    UnionFind uf(s_.NumVertices());
+    for (const int v : vertices) {
+      if (!in_set_[v]) continue;
+      const auto [begin, end] = s_.Neighbors(v);
+      for (auto* it = begin; it != end; ++it) {
+        if (it->vertex > v && in_set_[it->vertex] && it->weight > theta)
+          uf.Union(v, it->vertex);
+      }
+    }
+    std::map<int, std::vector<int>> groups;
+    for (const int v : vertices) {
+      if (in_set_[v]) groups[uf.Find(v)].push_back(v);
+    }
+    std::vector<std::vector<int>> result;
+    for (auto& [root, group] : groups) {
+      if (group.size() < 2) continue;
+      std::sort(group.begin(), group.end());
+      result.push_back(std::move(group));
+    }
+    return result;
+  }
+
+  double MaxWeightWithin(const std::vector<int>& component) {
+    in_set_.assign(s_.NumVertices(), false);
+    for (const int v : component) in_set_[v] = active_[v];
+    double best = -std::numeric_limits<double>::infinity();
+    for (const int v : component) {
+      const auto [begin, end] = s_.Neighbors(v);
+      for (auto* it = begin; it != end; ++it) {
+        if (in_set_[it->vertex]) best = std::max(best, it->weight);
+      }
+    }
+    return best;
+  }
+
+  // Grows a kernel of about (1 + alpha) / 2 * m images from the active image
+  // of `component` with the largest summed similarity over edges > theta,
+  // adding each time the image with the largest summed similarity to it.
+  void Carve(const std::vector<int>& component, double theta,
+             KernelOrigin origin, int layer) {
+    in_set_.assign(s_.NumVertices(), false);
+    for (const int v : component) in_set_[v] = active_[v];
+    auto strength = [&](int v) {
+      double sum = 0.0;
+      const auto [begin, end] = s_.Neighbors(v);
+      for (auto* it = begin; it != end; ++it) {
+        if (in_set_[it->vertex] && it->weight > theta) sum += it->weight;
+      }
+      return sum;
+    };
+    int seed = -1;
+    double best = -1.0;
+    for (const int v : component) {
+      if (!in_set_[v]) continue;
+      const double value = strength(v);
+      if (value > best) best = value, seed = v;
+    }
+    if (seed < 0) return;
+    const int target =
+        std::min<int>(std::lround((1.0 + o_.alpha) / 2.0 * m_),
+                      std::count(in_set_.begin(), in_set_.end(), true));
+    std::vector<double> link(s_.NumVertices(), 0.0);
+    std::vector<int> kernel;
+    for (int v = seed; v >= 0 && static_cast<int>(kernel.size()) < target;) {
+      kernel.push_back(v);
+      in_set_[v] = false;
+      const auto [begin, end] = s_.Neighbors(v);
+      for (auto* it = begin; it != end; ++it) {
+        if (in_set_[it->vertex] && it->weight > theta)
+          link[it->vertex] += it->weight;
+      }
+      v = -1;
+      double strongest = 0.0;
+      for (const int u : component) {
+        if (in_set_[u] && link[u] > strongest) strongest = link[u], v = u;
+      }
+    }
+    if (static_cast<int>(kernel.size()) < o_.min_kernel_size) return;
+    std::sort(kernel.begin(), kernel.end());
+    AddKernel(kernel, origin, layer);
+  }
+
+  void AddKernel(const std::vector<int>& images, KernelOrigin origin,
+                 int layer) {
+    for (const int v : images) active_[v] = false;
+    kernels_.push_back({images, origin, layer});
+  }
+
+  const ImageGraph& s_;
+  const KernelOptions& o_;
+  const int m_;
+  const int max_size_;
+  std::vector<bool> active_;
+  std::vector<bool> in_set_;
+  std::vector<Kernel> kernels_;
+};
+
+}  // namespace
+
+bool KernelOptions::Check(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (max_kernel_size < 2) return fail("max_kernel_size must be >= 2");
+  if (kernel_fraction <= 0 || kernel_fraction > 1)
+    return fail("kernel_fraction must be in (0, 1]");
+  if (alpha < 1) return fail("alpha must be >= 1");
+  if (num_layers < 1) return fail("num_layers must be >= 1");
+  if (epsilon < 0) return fail("epsilon must be >= 0");
+  if (min_kernel_size < 2 || min_kernel_size > max_kernel_size) {
+    return fail("min_kernel_size must be in [2, max_kernel_size]");
+  }
+  if (max_recursion_depth < 0) return fail("max_recursion_depth must be >= 0");
+  return true;
+}
+
+int KernelOptions::KernelSize(int num_images) const {
+  const int m = static_cast<int>(std::lround(
+      std::min<double>(max_kernel_size, kernel_fraction * num_images)));
+  return std::max(m, min_kernel_size);
+}
+
+std::vector<Kernel> FindKernels(const ImageGraph& similarity,
+                                const KernelOptions& options) {
+  std::string error;
+  if (!options.Check(&error))
+    throw std::invalid_argument("KernelOptions: " + error);
+  KernelSearch search(similarity, options);
+  if (similarity.NumEdges() > 0) {
+    const double b = similarity.MaxWeight();
+    const double a = std::min(similarity.MinWeight() + options.epsilon, b);
+    std::vector<int> all(similarity.NumVertices());
+    std::iota(all.begin(), all.end(), 0);
+    search.Search(all, a, b, 0, 0);
+  }
+  search.Rescue();
+  return search.Take();
+}
+
+}  // namespace tmr

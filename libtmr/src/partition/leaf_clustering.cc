@@ -1,0 +1,252 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/leaf_clustering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace tmr {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Cluster {
+  std::vector<int> members;  // global vertex indices
+  int root = -1;             // member closest to the kernel
+  double distance = kInf;    // distance of the root to the kernel
+  bool anchored = false;     // the root's path goes straight into the kernel
+  bool alive = true;
+  int version = 0;
+  std::unordered_map<int, double> neighbors;  // cluster -> lightest D edge
+};
+
+struct Candidate {
+  double phi;
+  int a, b, version_a, version_b;
+  bool operator>(const Candidate& o) const {
+    return std::tie(phi, a, b) > std::tie(o.phi, o.a, o.b);
+  }
+};
+
+class RadialAgglomeration {
+ public:
+  RadialAgglomeration(const ImageGraph& d, const std::vector<int>& kernel,
+                      const std::vector<int>& leaves, int kernel_size,
+                      const RadialAgglomerateOptions& o)
+      : d_(d), o_(o), ideal_size_(o.r * kernel_size) {
+    const int n = d.NumVertices();
+    in_cluster_.assign(n, false);
+    is_kernel_.assign(n, false);
+    for (const int v : kernel) in_cluster_.at(v) = is_kernel_.at(v) = true;
+    for (const int v : leaves) in_cluster_.at(v) = true;
+    ShortestPathsToKernel(kernel);
+    target_ = std::max<int>(1, std::lround(leaves.size() / ideal_size_));
+    double max_distance = 0.0;
+    cluster_of_.assign(n, -1);
+    for (const int v : leaves) {
+      if (distance_[v] == kInf) {
+        detached_.push_back(v);
+        continue;
+      }
+      max_distance = std::max(max_distance, distance_[v]);
+      cluster_of_[v] = static_cast<int>(clusters_.size());
+      Cluster c;
+      c.members = {v};
+      c.root = v;
+      c.distance = distance_[v];
+      c.anchored = is_kernel_[parent_[v]];
+      clusters_.push_back(std::move(c));
+    }
+    distance_scale_ = max_distance > 0 ? max_distance : 1.0;
+    for (Cluster& c : clusters_) {
+      const auto [begin, end] = d.Neighbors(c.root);
+      for (auto* it = begin; it != end; ++it) {
+        const int other = cluster_of_[it->vertex];
+        if (other >= 0) c.neighbors[other] = it->weight;
+      }
+    }
+    num_alive_ = static_cast<int>(clusters_.size());
+    for (const Cluster& c : clusters_) num_unanchored_ += !c.anchored;
+  }
+
+  std::vector<std::vector<int>> Run() {
+    for (int c = 0; c < static_cast<int>(clusters_.size()); ++c)
+      PushCandidates(c);
+    while (!heap_.empty() && (num_alive_ > target_ || num_unanchored_ > 0)) {
+      const Candidate top = heap_.top();
+      heap_.pop();
+      const Cluster& a = clusters_[top.a];
+      const Cluster& b = clusters_[top.b];
+      if (!a.alive || !b.alive || a.version != top.version_a ||
+          b.version != top.version_b) {
+        continue;
+      }
+      // At the target only merges that anchor a cluster remain.
+      if (num_alive_ <= target_ && a.anchored && b.anchored) continue;
+      PushCandidates(Merge(top.a, top.b));
+    }
+    std::vector<std::vector<int>> result;
+    for (Cluster& c : clusters_) {
+      if (!c.alive) continue;
+      std::sort(c.members.begin(), c.members.end());
+      result.push_back(std::move(c.members));
+    }
+    if (!detached_.empty()) {
+      std::sort(detached_.begin(), detached_.end());
+      result.push_back(detached_);
+    }
+    std::sort(result.begin(), result.end());
+    return result;
+  }
+
+ private:
+  // Multi-source Dijkstra from the kernel inside the image cluster.
+  void ShortestPathsToKernel(const std::vector<int>& kernel) {
+    const int n = d_.NumVertices();
+    distance_.assign(n, kInf);
+    parent_.assign(n, -1);
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (const int v : kernel) {
+      distance_[v] = 0.0;
+      parent_[v] = v;
+      queue.emplace(0.0, v);
+    }
+    while (!queue.empty()) {
+      const auto [dist, v] = queue.top();
+      queue.pop();
+      if (dist > distance_[v]) continue;
+      const auto [begin, end] = d_.Neighbors(v);
+      for (auto* it = begin; it != end; ++it) {
+        const int u = it->vertex;
+        if (!in_cluster_[u] || dist + it->weight >= distance_[u]) continue;
+        distance_[u] = dist + it->weight;
+        parent_[u] = v;
+        queue.emplace(distance_[u], u);
+      }
+    }
+  }
+
+  double Phi(int a, int b) const {
+    const Cluster& x = clusters_[a];
+    const Cluster& y = clusters_[b];
+    const double g_d = x.neighbors.at(b);
+    const double g_k = std::min(x.distance, y.distance);
+    const double g_r = std::abs(x.distance - y.distance);
+    const double g_c = static_cast<double>(x.members.size() + y.members.size());
+    return (o_.sigma1 * g_d + o_.sigma2 * g_k - o_.sigma3 * g_r) /
+               distance_scale_ +
+           o_.sigma4 * g_c / ideal_size_;
+  }
+
+  // The cluster an unanchored cluster must merge into: the one holding the
+  // next image on its root's path to the kernel.
+  int ParentCluster(int c) const {
+    return cluster_of_[parent_[clusters_[c].root]];
+  }
+
+  bool Allowed(int a, int b) const {
+    const Cluster& x = clusters_[a];
+    const Cluster& y = clusters_[b];
+    if (x.anchored && y.anchored) return true;
+    return (!x.anchored && ParentCluster(a) == b) ||
+           (!y.anchored && ParentCluster(b) == a);
+  }
+
+  void PushCandidates(int c) {
+    for (const auto& [other, weight] : clusters_[c].neighbors) {
+      if (!Allowed(c, other)) continue;
+      const int a = std::min(c, other), b = std::max(c, other);
+      heap_.push({Phi(a, b), a, b, clusters_[a].version, clusters_[b].version});
+    }
+  }
+
+  // Merges the smaller of the two clusters into the larger; returns the
+  // surviving cluster.
+  int Merge(int a, int b) {
+    if (clusters_[a].members.size() < clusters_[b].members.size())
+      std::swap(a, b);
+    Cluster& keep = clusters_[a];
+    Cluster& gone = clusters_[b];
+    num_unanchored_ -= !keep.anchored + !gone.anchored;
+    const bool gone_is_closer =
+        std::tie(gone.distance, gone.root) < std::tie(keep.distance, keep.root);
+    if (gone_is_closer) {
+      keep.root = gone.root;
+      keep.distance = gone.distance;
+    }
+    keep.anchored = is_kernel_[parent_[keep.root]];
+    num_unanchored_ += !keep.anchored;
+    for (const int v : gone.members) cluster_of_[v] = a;
+    keep.members.insert(keep.members.end(), gone.members.begin(),
+                        gone.members.end());
+    for (const auto& [other, weight] : gone.neighbors) {
+      if (other == a) continue;
+      const auto found = keep.neighbors.find(other);
+      const double lightest = found == keep.neighbors.end()
+                                  ? weight
+                                  : std::min(found->second, weight);
+      keep.neighbors[other] = lightest;
+      auto& theirs = clusters_[other].neighbors;
+      theirs.erase(b);
+      theirs[a] = lightest;
+      ++clusters_[other].version;
+    }
+    keep.neighbors.erase(b);
+    gone.alive = false;
+    gone.members.clear();
+    gone.neighbors.clear();
+    ++keep.version;
+    --num_alive_;
+    // Every neighbour's candidates with the merged cluster changed.
+    for (const auto& [other, weight] : keep.neighbors) {
+      ++clusters_[other].version;
+      PushCandidates(other);
+    }
+    return a;
+  }
+
+  const ImageGraph& d_;
+  const RadialAgglomerateOptions& o_;
+  const double ideal_size_;
+  int target_ = 1;
+  double distance_scale_ = 1.0;
+  std::vector<bool> in_cluster_, is_kernel_;
+  std::vector<double> distance_;
+  std::vector<int> parent_, cluster_of_, detached_;
+  std::vector<Cluster> clusters_;
+  int num_alive_ = 0, num_unanchored_ = 0;
+  std::priority_queue<Candidate, std::vector<Candidate>,
+                      std::greater<Candidate>>
+      heap_;
+};
+
+}  // namespace
+
+bool RadialAgglomerateOptions::Check(std::string* error) const {
+  if (r <= 0 || sigma1 < 0 || sigma2 < 0 || sigma3 < 0 || sigma4 < 0) {
+    if (error) *error = "r must be > 0 and the sigmas >= 0";
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::vector<int>> RadialAgglomerateClustering(
+    const ImageGraph& difference, const std::vector<int>& kernel,
+    const std::vector<int>& leaves, int kernel_size,
+    const RadialAgglomerateOptions& options) {
+  std::string error;
+  if (!options.Check(&error))
+    throw std::invalid_argument("RadialAgglomerate: " + error);
+  if (kernel.empty() || kernel_size < 1) {
+    throw std::invalid_argument("RadialAgglomerateClustering: empty kernel");
+  }
+  if (leaves.empty()) return {};
+  return RadialAgglomeration(difference, kernel, leaves, kernel_size, options)
+      .Run();
+}
+
+}  // namespace tmr

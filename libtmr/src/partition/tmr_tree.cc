@@ -1,0 +1,95 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/tmr_tree.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+#include <stdexcept>
+
+#include "tmr/scene/image_graph.h"
+
+namespace tmr {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+bool TmrTreeOptions::Check(std::string* error) const {
+  return kernels.Check(error) && exemplar.Check(error) &&
+         image_clustering.Check(error) && leaf_clustering.Check(error);
+}
+
+TmrTree BuildTmrTree(const MatchGraph& match_graph,
+                     const TmrTreeOptions& options) {
+  std::string error;
+  if (!options.Check(&error))
+    throw std::invalid_argument("TmrTreeOptions: " + error);
+  TmrTree tree;
+  tree.options = options;
+  tree.options.exemplar.ap.seed = options.seed;
+  for (const MatchGraphImage& image : match_graph.images) {
+    tree.image_names.push_back(image.name);
+    tree.image_ids.push_back(image.image_id);
+  }
+  tree.kernel_size = options.kernels.KernelSize(match_graph.NumImages());
+
+  auto start = std::chrono::steady_clock::now();
+  const ImageGraph s = BuildSimilarityGraph(match_graph);
+  const ImageGraph d = BuildDifferenceGraph(s);
+  tree.timing.graphs_s = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  const std::vector<Kernel> kernels = FindKernels(s, options.kernels);
+  tree.timing.kernels_s = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  std::vector<std::vector<int>> kernel_images;
+  std::vector<int> exemplars;
+  for (const Kernel& kernel : kernels) {
+    const KernelSeed seed =
+        SelectExemplar(s, match_graph, kernel.images, tree.options.exemplar);
+    TmrKernelNode node;
+    node.kernel_images = kernel.images;
+    node.exemplar = seed.exemplar;
+    node.second_images = seed.second_images;
+    node.ap_centres = seed.ap_centres;
+    node.exemplar_score = seed.score;
+    node.origin = kernel.origin;
+    node.layer = kernel.layer;
+    tree.kernels.push_back(std::move(node));
+    kernel_images.push_back(kernel.images);
+    exemplars.push_back(seed.exemplar);
+  }
+  tree.timing.exemplars_s = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  const ImageClusters clusters = AssignByMultiLayerShortestPath(
+      d, kernel_images, exemplars, options.image_clustering);
+  for (int v = 0; v < match_graph.NumImages(); ++v) {
+    if (clusters.cluster[v] < 0) {
+      tree.unclustered.push_back(v);
+    } else {
+      tree.kernels[clusters.cluster[v]].cluster_images.push_back(v);
+    }
+  }
+  tree.timing.image_clusters_s = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  for (TmrKernelNode& node : tree.kernels) {
+    std::vector<int> leaves;
+    std::set_difference(node.cluster_images.begin(), node.cluster_images.end(),
+                        node.kernel_images.begin(), node.kernel_images.end(),
+                        std::back_inserter(leaves));
+    node.leaf_clusters =
+        RadialAgglomerateClustering(d, node.kernel_images, leaves,
+                                    tree.kernel_size, options.leaf_clustering);
+  }
+  tree.timing.leaf_clusters_s = SecondsSince(start);
+  return tree;
+}
+
+}  // namespace tmr

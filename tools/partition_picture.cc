@@ -1,0 +1,111 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "partition_picture.h"
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/fruchterman_reingold.hpp>
+#include <boost/graph/random_layout.hpp>
+#include <boost/graph/topology.hpp>
+#include <boost/random/mersenne_twister.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace tmr {
+namespace {
+
+using Topology = boost::square_topology<boost::mt19937>;
+using Point = Topology::point_type;
+using Graph =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
+                          boost::property<boost::vertex_index_t, int>>;
+
+std::vector<Point> Layout(const ImageGraph& s, double extent) {
+  Graph g(s.NumVertices());
+  for (const WeightedEdge& e : s.Edges()) boost::add_edge(e.u, e.v, g);
+  boost::mt19937 rng(7);
+  Topology topology(rng, extent);
+  std::vector<Point> position(s.NumVertices());
+  auto map = boost::make_iterator_property_map(
+      position.begin(), boost::get(boost::vertex_index, g));
+  boost::random_graph_layout(g, map, topology);
+  boost::fruchterman_reingold_force_directed_layout(
+      g, map, topology, boost::cooling(boost::linear_cooling<double>(400)));
+  return position;
+}
+
+cv::Scalar Colour(int cluster, int leaf, int num_leaves) {
+  const int hue = (cluster * 47) % 180;  // OpenCV hue range
+  const int value =
+      num_leaves > 1 ? 140 + (115 * leaf) / (num_leaves - 1) : 220;
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue, 200, value)), bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
+  return {double(c[0]), double(c[1]), double(c[2])};
+}
+
+}  // namespace
+
+bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,
+                          const std::string& png_path, int size_px) {
+  const int n = similarity.NumVertices();
+  if (n == 0) return false;
+  const std::vector<Point> layout =
+      Layout(similarity, 100.0 * std::sqrt(double(n)));
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  for (const Point& p : layout) {
+    min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
+    min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
+  }
+  const double margin = 40,
+               span = std::max({max_x - min_x, max_y - min_y, 1e-9});
+  auto pixel = [&](int v) {
+    return cv::Point(static_cast<int>(margin + (layout[v][0] - min_x) / span *
+                                                   (size_px - 2 * margin)),
+                     static_cast<int>(margin + (layout[v][1] - min_y) / span *
+                                                   (size_px - 2 * margin)));
+  };
+  cv::Mat canvas(size_px, size_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (const WeightedEdge& e : similarity.Edges()) {
+    const int shade =
+        235 - static_cast<int>(120 * std::min(1.0, e.weight / 0.3));
+    cv::line(canvas, pixel(e.u), pixel(e.v), cv::Scalar(shade, shade, shade), 1,
+             cv::LINE_AA);
+  }
+  const int radius =
+      std::max(3, std::min(8, static_cast<int>(size_px / std::sqrt(4.0 * n))));
+  for (size_t k = 0; k < tree.kernels.size(); ++k) {
+    const TmrKernelNode& node = tree.kernels[k];
+    const int num_leaves = static_cast<int>(node.leaf_clusters.size());
+    for (int l = 0; l < num_leaves; ++l) {
+      for (const int v : node.leaf_clusters[l]) {
+        cv::circle(canvas, pixel(v), radius, Colour(k, l, num_leaves),
+                   cv::FILLED, cv::LINE_AA);
+      }
+    }
+    for (const int v : node.kernel_images) {
+      cv::circle(canvas, pixel(v), radius, Colour(k, 0, 1), cv::FILLED,
+                 cv::LINE_AA);
+      cv::circle(canvas, pixel(v), radius, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    }
+    const cv::Point e = pixel(node.exemplar);
+    const int r = 2 * radius + 2;
+    cv::rectangle(canvas, e - cv::Point(r, r), e + cv::Point(r, r),
+                  cv::Scalar(0, 0, 0), cv::FILLED);
+    cv::putText(canvas, std::to_string(k), e + cv::Point(r + 3, -r),
+                cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 2,
+                cv::LINE_AA);
+  }
+  for (const int v : tree.unclustered) {
+    const cv::Point p = pixel(v);
+    cv::drawMarker(canvas, p, cv::Scalar(128, 128, 128),
+                   cv::MARKER_TILTED_CROSS, 2 * radius + 2, 2);
+  }
+  const std::string legend =
+      std::to_string(n) + " images, " + std::to_string(tree.kernels.size()) +
+      " kernels (black squares: exemplars; outlined: kernel images; "
+      "shades: leaf clusters; x: unclustered)";
+  cv::putText(canvas, legend, cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  return cv::imwrite(png_path, canvas);
+}
+
+}  // namespace tmr

@@ -1,0 +1,93 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr_options.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace tmr {
+
+namespace po = boost::program_options;
+
+void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
+  auto add = [&](const char* name, auto* value, const char* help) {
+    desc->add_options()(name, po::value(value)->default_value(*value), help);
+  };
+  add("Tmr.seed", &o->seed, "seed of every random choice");
+  add("Tmr.max_kernel_size", &o->kernels.max_kernel_size,
+      "m = min(this, kernel_fraction * images)");
+  add("Tmr.kernel_fraction", &o->kernels.kernel_fraction,
+      "kernel size as a share of the images");
+  add("Tmr.alpha", &o->kernels.alpha, "kernels hold m to alpha * m images");
+  add("Tmr.kernel_layers", &o->kernels.num_layers,
+      "layers k of the kernel search");
+  add("Tmr.epsilon", &o->kernels.epsilon, "a = min(s) + epsilon");
+  add("Tmr.min_kernel_size", &o->kernels.min_kernel_size, "smallest kernel");
+  add("Tmr.beta1", &o->exemplar.beta1,
+      "weight of the mean similarity in the exemplar score");
+  add("Tmr.beta2", &o->exemplar.beta2,
+      "weight of the mean neighbour degree in the exemplar score");
+  add("Tmr.ap_damping", &o->exemplar.ap.damping,
+      "affinity propagation damping");
+  add("Tmr.msp_layers", &o->image_clustering.num_layers,
+      "layers L of the Multi-layer Shortest Path");
+  add("Tmr.r", &o->leaf_clustering.r, "ideal leaf cluster size e = r * m");
+  add("Tmr.sigma1", &o->leaf_clustering.sigma1,
+      "RAC weight of the cluster distance");
+  add("Tmr.sigma2", &o->leaf_clustering.sigma2,
+      "RAC weight of the distance to the kernel");
+  add("Tmr.sigma3", &o->leaf_clustering.sigma3,
+      "RAC weight of the radial difference");
+  add("Tmr.sigma4", &o->leaf_clustering.sigma4,
+      "RAC weight of the merged size");
+}
+
+bool WriteFileAtomically(const std::string& path, const std::string& content) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << content;
+    out.flush();
+    if (!out) return false;
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  return !ec;
+}
+
+void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
+  out << "TMR-tree: " << tree.image_names.size()
+      << " images, kernel size m = " << tree.kernel_size << ", "
+      << tree.kernels.size() << " kernels, " << tree.unclustered.size()
+      << " unclustered\n";
+  out << std::setw(6) << "kernel" << std::setw(8) << "origin" << std::setw(8)
+      << "kernel" << std::setw(9) << "cluster" << std::setw(7) << "leaves"
+      << "  leaf cluster sizes"
+      << "   exemplar\n";
+  for (size_t k = 0; k < tree.kernels.size(); ++k) {
+    const TmrKernelNode& node = tree.kernels[k];
+    const char* origin = node.origin == KernelOrigin::kLayer    ? "layer"
+                         : node.origin == KernelOrigin::kCarved ? "carved"
+                                                                : "rescue";
+    std::string sizes;
+    for (const auto& leaf : node.leaf_clusters) {
+      sizes += (sizes.empty() ? "" : " ") + std::to_string(leaf.size());
+    }
+    if (sizes.size() > 30) sizes = sizes.substr(0, 27) + "...";
+    out << std::setw(6) << k << std::setw(8) << origin << std::setw(8)
+        << node.kernel_images.size() << std::setw(9)
+        << node.cluster_images.size() << std::setw(7)
+        << node.leaf_clusters.size() << "  " << std::left << std::setw(30)
+        << sizes << std::right << " " << tree.image_names.at(node.exemplar)
+        << "\n";
+  }
+  const auto& t = tree.timing;
+  out << std::fixed << std::setprecision(3) << "time: graphs " << t.graphs_s
+      << " s, kernels " << t.kernels_s << " s, exemplars " << t.exemplars_s
+      << " s, image clusters " << t.image_clusters_s << " s, leaf clusters "
+      << t.leaf_clusters_s << " s\n"
+      << std::defaultfloat;
+}
+
+}  // namespace tmr

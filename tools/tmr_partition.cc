@@ -1,0 +1,91 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// tmr_partition --database_path DB --output_path DIR: builds the TMR-tree of
+// a COLMAP database (read-only) and writes DIR/tree.json and
+// DIR/partition.png, then prints a summary.
+#include <boost/program_options.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "partition_picture.h"
+#include "tmr/io/database_reader.h"
+#include "tmr_options.h"
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+
+int main(int argc, char** argv) {
+  std::string database_path, output_path;
+  bool picture = true;
+  tmr::MatchGraphOptions graph_options;
+  tmr::TmrTreeOptions tree_options;
+  po::options_description desc(
+      "tmr_partition: the TMR-tree of a COLMAP database");
+  desc.add_options()("help,h", "print this help")(
+      "database_path", po::value(&database_path)->required(),
+      "COLMAP database (read-only)")("output_path",
+                                     po::value(&output_path)->required(),
+                                     "folder for tree.json and partition.png")(
+      "min_num_matches",
+      po::value(&graph_options.min_num_matches)
+          ->default_value(graph_options.min_num_matches),
+      "minimum inlier matches of a pair")(
+      "picture", po::value(&picture)->default_value(picture),
+      "draw partition.png");
+  tmr::AddTmrTreeOptions(&desc, &tree_options);
+  try {
+    po::variables_map vm;
+    po::store(po::parse_command_line(argc, argv, desc), vm);
+    if (vm.count("help")) {
+      std::cout << desc << "\n";
+      return 0;
+    }
+    po::notify(vm);
+  } catch (const po::error& e) {
+    std::cerr << "tmr_partition: error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  std::string error;
+  if (!tree_options.Check(&error) || !graph_options.Check(&error)) {
+    std::cerr << "tmr_partition: error: " << error << "\n";
+    return 2;
+  }
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    const tmr::MatchGraph graph =
+        tmr::ReadMatchGraph(database_path, graph_options);
+    const double read_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
+    if (graph.NumImages() == 0)
+      throw std::runtime_error("the database has no images");
+    std::cout << "read " << graph.NumImages() << " images and "
+              << graph.NumPairs() << " verified pairs in " << read_s << " s\n";
+    const tmr::TmrTree tree = tmr::BuildTmrTree(graph, tree_options);
+    fs::create_directories(output_path);
+    std::ostringstream json;
+    tmr::WriteTmrTreeJson(tree, json);
+    const std::string tree_path =
+        (fs::path(output_path) / "tree.json").string();
+    if (!tmr::WriteFileAtomically(tree_path, json.str())) {
+      throw std::runtime_error("cannot write '" + tree_path + "'");
+    }
+    tmr::PrintTreeSummary(tree, std::cout);
+    std::cout << "wrote " << tree_path << "\n";
+    if (picture) {
+      const std::string png =
+          (fs::path(output_path) / "partition.png").string();
+      if (!tmr::DrawPartitionPicture(tmr::BuildSimilarityGraph(graph), tree,
+                                     png)) {
+        throw std::runtime_error("cannot write '" + png + "'");
+      }
+      std::cout << "wrote " << png << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "tmr_partition: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
