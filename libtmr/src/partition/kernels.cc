@@ -52,9 +52,12 @@ class KernelSearch {
           AddKernel(component, KernelOrigin::kLayer, layer);
           ++found;
         } else if (size > max_size_) {
+          // Recursing is pointless when the component is the whole input
+          // again: its weights cannot split it on this range.
+          const bool splits = depth == 0 || size < CountActive(vertices);
           const double b_c = MaxWeightWithin(component);
           int inner = 0;
-          if (depth < o_.max_recursion_depth && b_c > theta) {
+          if (splits && depth < o_.max_recursion_depth && b_c > theta) {
             inner = Search(component, theta, b_c, depth + 1, layer);
           }
           if (inner == 0) {
@@ -123,6 +126,11 @@ class KernelSearch {
       result.push_back(std::move(group));
     }
     return result;
+  }
+
+  int CountActive(const std::vector<int>& vertices) const {
+    return static_cast<int>(std::count_if(vertices.begin(), vertices.end(),
+                                          [&](int v) { return active_[v]; }));
   }
 
   double MaxWeightWithin(const std::vector<int>& component) {

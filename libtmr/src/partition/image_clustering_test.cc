@@ -1,0 +1,69 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/image_clustering.h"
+
+#include <gtest/gtest.h>
+
+#include "partition/test_graphs.h"
+
+namespace tmr {
+namespace {
+
+// The paper's Fig. 5 on D: W reaches exemplar E1 by a short path with one
+// weak edge (0.14 + 0.66 + 0.18 = 0.98) and exemplar E2 by a longer path of
+// even edges (4 x 0.3 = 1.2). MSP takes the even path; one layer (a plain
+// shortest path) takes the short one.
+TEST(MultiLayerShortestPath, EvenPathBeatsShorterPathWithWeakEdge) {
+  enum { E1, R1, R2, W, G1, G2, G3, E2, N };
+  const ImageGraph d(N, {{E1, R1, 0.14},
+                         {R1, R2, 0.66},
+                         {R2, W, 0.18},
+                         {W, G3, 0.3},
+                         {G3, G2, 0.3},
+                         {G2, G1, 0.3},
+                         {G1, E2, 0.3}});
+  const std::vector<std::vector<int>> kernels = {{E1}, {E2}};
+  MultiLayerShortestPathOptions options;
+  const ImageClusters msp =
+      AssignByMultiLayerShortestPath(d, kernels, {E1, E2}, options);
+  EXPECT_EQ(msp.cluster[W], 1);
+  EXPECT_EQ(msp.cluster[R1], 0);
+  EXPECT_EQ(msp.cluster[G2], 1);
+  EXPECT_NEAR(msp.path_length[W], 1.2, 1e-12);
+  EXPECT_EQ(msp.layer[R1], 1);
+  EXPECT_GT(msp.layer[W], 1);
+  EXPECT_LT(msp.layer[W], options.num_layers);
+
+  options.num_layers = 1;
+  const ImageClusters plain =
+      AssignByMultiLayerShortestPath(d, kernels, {E1, E2}, options);
+  EXPECT_EQ(plain.cluster[W], 0);
+  EXPECT_NEAR(plain.path_length[W], 0.98, 1e-12);
+}
+
+TEST(MultiLayerShortestPath,
+     KernelImagesStayAndUnreachableImagesAreUnclustered) {
+  // 0-1-2 kernel {0, 1} exemplar 0; 3 is isolated; 4-5 form a part without
+  // a kernel.
+  const ImageGraph d(6, {{0, 1, 0.2}, {1, 2, 0.9}, {4, 5, 0.5}});
+  const ImageClusters result =
+      AssignByMultiLayerShortestPath(d, {{0, 1}}, {0}, {});
+  EXPECT_EQ(result.cluster, (std::vector<int>{0, 0, 0, -1, -1, -1}));
+  EXPECT_EQ(result.layer[2], 20);
+}
+
+TEST(MultiLayerShortestPath, TwoGroupsSplitAtTheChain) {
+  const test::TwoGroups scene(18, 30, /*with_chain=*/true);
+  const ImageGraph d = BuildDifferenceGraph(BuildSimilarityGraph(
+      test::MatchGraphWithSimilarities(scene.num_images, scene.edges)));
+  const ImageClusters result =
+      AssignByMultiLayerShortestPath(d, {scene.group_a, scene.group_b},
+                                     {scene.group_a[0], scene.group_b[0]}, {});
+  for (const int v : scene.leaves_a) EXPECT_EQ(result.cluster[v], 0) << v;
+  for (const int v : scene.leaves_b) EXPECT_EQ(result.cluster[v], 1) << v;
+  // The chain splits by distance: its first images go to A, its last to B.
+  EXPECT_EQ(result.cluster[scene.chain_images.front()], 0);
+  EXPECT_EQ(result.cluster[scene.chain_images.back()], 1);
+}
+
+}  // namespace
+}  // namespace tmr

@@ -1,0 +1,102 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/tmr_tree.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "partition/test_graphs.h"
+
+namespace tmr {
+namespace {
+
+MatchGraph TwoGroupsWithChain() {
+  const test::TwoGroups scene(18, 30, /*with_chain=*/true);
+  MatchGraph graph =
+      test::MatchGraphWithSimilarities(scene.num_images, scene.edges);
+  graph.images.push_back({1000, "lonely.jpg", 1, 100, 0});  // no pair at all
+  return graph;
+}
+
+std::string Json(const TmrTree& tree) {
+  std::ostringstream out;
+  WriteTmrTreeJson(tree, out);
+  return out.str();
+}
+
+TEST(TmrTree, TwoGroupsGiveTwoKernelsWithClustersAndLeaves) {
+  const MatchGraph graph = TwoGroupsWithChain();
+  const TmrTree tree = BuildTmrTree(graph, {});
+  ASSERT_EQ(tree.kernels.size(), 2u);
+  EXPECT_EQ(tree.unclustered, std::vector<int>{graph.NumImages() - 1});
+  int clustered = 0;
+  for (const TmrKernelNode& node : tree.kernels) {
+    EXPECT_TRUE(std::binary_search(node.kernel_images.begin(),
+                                   node.kernel_images.end(), node.exemplar));
+    EXPECT_FALSE(node.second_images.empty());
+    EXPECT_FALSE(node.leaf_clusters.empty());
+    size_t leaves = 0;
+    for (const auto& leaf : node.leaf_clusters) leaves += leaf.size();
+    EXPECT_EQ(node.kernel_images.size() + leaves, node.cluster_images.size());
+    clustered += node.cluster_images.size();
+  }
+  EXPECT_EQ(clustered + 1, graph.NumImages());
+}
+
+TEST(TmrTree, SameSeedSameTreeAndJsonRoundTrip) {
+  const MatchGraph graph = TwoGroupsWithChain();
+  TmrTreeOptions options;
+  options.seed = 17;
+  const TmrTree a = BuildTmrTree(graph, options);
+  const TmrTree b = BuildTmrTree(graph, options);
+  TmrTree a_copy = a, b_copy = b;
+  a_copy.timing = b_copy.timing = TmrTreeTiming();
+  EXPECT_EQ(Json(a_copy), Json(b_copy));
+
+  std::istringstream in(Json(a));
+  std::vector<std::string> names;
+  for (const auto& image : graph.images) names.push_back(image.name);
+  const TmrTree read = ReadTmrTreeJson(in, names);
+  ASSERT_EQ(read.kernels.size(), a.kernels.size());
+  for (size_t k = 0; k < a.kernels.size(); ++k) {
+    EXPECT_EQ(read.kernels[k].exemplar, a.kernels[k].exemplar);
+    EXPECT_EQ(read.kernels[k].second_images, a.kernels[k].second_images);
+    EXPECT_EQ(read.kernels[k].kernel_images, a.kernels[k].kernel_images);
+    EXPECT_EQ(read.kernels[k].leaf_clusters, a.kernels[k].leaf_clusters);
+    EXPECT_EQ(read.kernels[k].cluster_images, a.kernels[k].cluster_images);
+  }
+  EXPECT_EQ(read.unclustered, a.unclustered);
+  EXPECT_EQ(read.kernel_size, a.kernel_size);
+  EXPECT_EQ(read.options.seed, 17u);
+  EXPECT_EQ(read.options.leaf_clustering.sigma3, 3.0);
+}
+
+TEST(TmrTree, JsonHasTheDocumentedFields) {
+  const std::string json = Json(BuildTmrTree(TwoGroupsWithChain(), {}));
+  for (const char* field :
+       {"\"exemplar\"", "\"second_image\"", "\"kernel_images\"",
+        "\"leaf_clusters\"", "\"unclustered\"", "\"parameters\""}) {
+    EXPECT_NE(json.find(field), std::string::npos) << field;
+  }
+}
+
+TEST(TmrTree, MalformedJsonIsAClearError) {
+  for (const std::string text :
+       {"", "{", "[]", "{\"format\": \"other\"}", "{\"format\": \"tmr-tree\"}",
+        "{\"format\": \"tmr-tree\", \"kernels\": [{\"exemplar\": 5}], "
+        "\"unclustered\": []}",
+        "{\"format\": \"tmr-tree\", \"kernels\": [], \"unclustered\": "
+        "[\"x\"]}"}) {
+    std::istringstream in(text);
+    EXPECT_THROW(ReadTmrTreeJson(in, {"a", "b"}), std::runtime_error) << text;
+  }
+}
+
+TEST(TmrTree, EmptyGraph) {
+  const TmrTree tree = BuildTmrTree(MatchGraph(), {});
+  EXPECT_TRUE(tree.kernels.empty());
+  EXPECT_TRUE(tree.unclustered.empty());
+}
+
+}  // namespace
+}  // namespace tmr
