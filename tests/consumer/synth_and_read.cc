@@ -9,7 +9,7 @@ int main(int argc, char** argv) {
   const std::string path = argc > 1 ? argv[1] : "consumer.db";
   std::filesystem::remove(path);
   tmr::SyntheticSceneOptions options;
-  options.cameras_per_place = 6;
+  options.cameras_per_place = 20;
   options.num_unlinked_places = 0;
   options.link_spacing = 0;
   options.num_places = 1;
@@ -21,5 +21,5 @@ int main(int argc, char** argv) {
   const tmr::MatchGraph graph = tmr::ReadMatchGraph(path);
   std::cout << graph.NumImages() << " images, " << graph.NumPairs()
             << " pairs\n";
-  return graph.NumImages() == 6 && graph.NumPairs() > 0 ? 0 : 1;
+  return graph.NumImages() == 20 && graph.NumPairs() > 0 ? 0 : 1;
 }
