@@ -32,6 +32,8 @@ with open(sys.argv[2], "w") as f:
     f.write("length,count,fraction\n")
     for k, c in enumerate(h):
         if k >= 2: f.write(f"{k},{c},{c/total}\n")
+if model["registered_images"] < 5:  # the mapper failed: no track statistics
+    import os; os.remove(sys.argv[2])
 print(f"{model['registered_images']} images in the largest model, "
       f"mean track length {model['mean_track_length']:.2f}, "
       f"reprojection error {model['mean_reprojection_error_px']:.2f} px")
@@ -101,7 +103,7 @@ plot() {  # KIND XLABEL XRANGE OUTPUT
     sep=", "
   done
   gnuplot <<GP
-set terminal pngcairo size 900,500
+set terminal pngcairo size 900,500 noenhanced
 set output '$4'
 set datafile separator ','
 set key top right

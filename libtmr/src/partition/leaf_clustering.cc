@@ -73,8 +73,22 @@ class RadialAgglomeration {
   }
 
   std::vector<std::vector<int>> Run() {
-    for (int c = 0; c < static_cast<int>(clusters_.size()); ++c)
-      PushCandidates(c);
+    for (int c = 0; c < static_cast<int>(clusters_.size()); ++c) {
+      if (clusters_[c].anchored) anchored_.push_back(c);
+    }
+    for (int c = 0; c < static_cast<int>(clusters_.size()); ++c) {
+      if (!clusters_[c].anchored) {
+        PushCandidates(c);
+        continue;
+      }
+      // Anchored pairs are pushed once, from their smaller index.
+      for (const auto& [other, weight] : clusters_[c].neighbors) {
+        if (Allowed(c, other) && !clusters_[other].anchored) Push(c, other);
+      }
+      for (const int other : anchored_) {
+        if (other > c) Push(c, other);
+      }
+    }
     while (!heap_.empty() && (num_alive_ > target_ || num_unanchored_ > 0)) {
       const Candidate top = heap_.top();
       heap_.pop();
@@ -130,10 +144,20 @@ class RadialAgglomeration {
     }
   }
 
+  // Single-link distance: the lightest D edge between the clusters, or the
+  // path through the kernel (whose images are all at distance 0).
+  double LinkDistance(int a, int b) const {
+    const Cluster& x = clusters_[a];
+    const Cluster& y = clusters_[b];
+    const double through_kernel = x.anchored && y.anchored ? x.distance + y.distance : kInf;
+    const auto edge = x.neighbors.find(b);
+    return edge == x.neighbors.end() ? through_kernel : std::min(edge->second, through_kernel);
+  }
+
   double Phi(int a, int b) const {
     const Cluster& x = clusters_[a];
     const Cluster& y = clusters_[b];
-    const double g_d = x.neighbors.at(b);
+    const double g_d = LinkDistance(a, b);
     const double g_k = std::min(x.distance, y.distance);
     const double g_r = std::abs(x.distance - y.distance);
     const double g_c = static_cast<double>(x.members.size() + y.members.size());
@@ -156,11 +180,21 @@ class RadialAgglomeration {
            (!y.anchored && ParentCluster(b) == a);
   }
 
+  void Push(int c, int other) {
+    const int a = std::min(c, other), b = std::max(c, other);
+    heap_.push({Phi(a, b), a, b, clusters_[a].version, clusters_[b].version});
+  }
+
+  // Candidates of cluster c: its allowed neighbours and, when c is
+  // anchored, every other anchored cluster (joined through the kernel).
   void PushCandidates(int c) {
+    const bool anchored = clusters_[c].anchored;
     for (const auto& [other, weight] : clusters_[c].neighbors) {
-      if (!Allowed(c, other)) continue;
-      const int a = std::min(c, other), b = std::max(c, other);
-      heap_.push({Phi(a, b), a, b, clusters_[a].version, clusters_[b].version});
+      if (Allowed(c, other) && !(anchored && clusters_[other].anchored)) Push(c, other);
+    }
+    if (!anchored) return;
+    for (const int other : anchored_) {
+      if (other != c && clusters_[other].alive && clusters_[other].anchored) Push(c, other);
     }
   }
 
@@ -178,8 +212,10 @@ class RadialAgglomeration {
       keep.root = gone.root;
       keep.distance = gone.distance;
     }
+    const bool was_anchored = keep.anchored;
     keep.anchored = is_kernel_[parent_[keep.root]];
     num_unanchored_ += !keep.anchored;
+    if (keep.anchored && !was_anchored) anchored_.push_back(a);
     for (const int v : gone.members) cluster_of_[v] = a;
     keep.members.insert(keep.members.end(), gone.members.begin(),
                         gone.members.end());
@@ -206,6 +242,11 @@ class RadialAgglomeration {
       ++clusters_[other].version;
       PushCandidates(other);
     }
+    if (anchored_.size() > 2 * static_cast<size_t>(num_alive_)) {
+      anchored_.erase(std::remove_if(anchored_.begin(), anchored_.end(),
+                                     [&](int c) { return !clusters_[c].alive; }),
+                      anchored_.end());
+    }
     return a;
   }
 
@@ -217,6 +258,7 @@ class RadialAgglomeration {
   std::vector<bool> in_cluster_, is_kernel_;
   std::vector<double> distance_;
   std::vector<int> parent_, cluster_of_, detached_;
+  std::vector<int> anchored_;  // anchored clusters (may hold dead ones)
   std::vector<Cluster> clusters_;
   int num_alive_ = 0, num_unanchored_ = 0;
   std::priority_queue<Candidate, std::vector<Candidate>,
