@@ -16,13 +16,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Part(const std::string& name) { return name.substr(0, name.find('/')); }
+std::string Part(const std::string& name) {
+  return name.substr(0, name.find('/'));
+}
 
 class PartitionSyntheticTest : public ::testing::TestWithParam<double> {};
 
 TEST_P(PartitionSyntheticTest, EveryPlaceGetsItsKernelAndItsImages) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("tmr_partition_synth_" + std::to_string(static_cast<int>(GetParam())));
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("tmr_partition_synth_" + std::to_string(static_cast<int>(GetParam())));
   fs::remove_all(dir);
   SyntheticSceneOptions options;
   options.num_places = 3;
@@ -30,7 +33,8 @@ TEST_P(PartitionSyntheticTest, EveryPlaceGetsItsKernelAndItsImages) {
   options.link_spacing = GetParam();
   options.seed = 11;
   std::string error;
-  ASSERT_TRUE(WriteSyntheticScene(options, (dir / "database.db").string(), "", nullptr, &error))
+  ASSERT_TRUE(WriteSyntheticScene(options, (dir / "database.db").string(), "",
+                                  nullptr, &error))
       << error;
   const MatchGraph graph = ReadMatchGraph((dir / "database.db").string());
   const TmrTree tree = BuildTmrTree(graph, {});
@@ -46,12 +50,15 @@ TEST_P(PartitionSyntheticTest, EveryPlaceGetsItsKernelAndItsImages) {
   for (const TmrKernelNode& node : tree.kernels) {
     std::map<std::string, int> votes;
     for (const int v : node.kernel_images) ++votes[Part(tree.image_names[v])];
-    const auto best = std::max_element(votes.begin(), votes.end(),
-                                       [](auto& a, auto& b) { return a.second < b.second; });
-    EXPECT_GE(best->second, 0.8 * node.kernel_images.size()) << "a kernel mixes places";
+    const auto best =
+        std::max_element(votes.begin(), votes.end(),
+                         [](auto& a, auto& b) { return a.second < b.second; });
+    EXPECT_GE(best->second, 0.8 * node.kernel_images.size())
+        << "a kernel mixes places";
     ++kernels_of_place[best->first];
     for (const int v : node.cluster_images) {
-      if (Part(tree.image_names[v]) == best->first) ++clustered_in_own[best->first];
+      if (Part(tree.image_names[v]) == best->first)
+        ++clustered_in_own[best->first];
     }
   }
   for (const auto& [place, count] : images_of_place) {
@@ -60,7 +67,8 @@ TEST_P(PartitionSyntheticTest, EveryPlaceGetsItsKernelAndItsImages) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(LinkSpacing, PartitionSyntheticTest, ::testing::Values(3.0, 9.0, 0.0));
+INSTANTIATE_TEST_SUITE_P(LinkSpacing, PartitionSyntheticTest,
+                         ::testing::Values(3.0, 9.0, 0.0));
 
 }  // namespace
 }  // namespace tmr

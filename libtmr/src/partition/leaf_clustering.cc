@@ -149,9 +149,11 @@ class RadialAgglomeration {
   double LinkDistance(int a, int b) const {
     const Cluster& x = clusters_[a];
     const Cluster& y = clusters_[b];
-    const double through_kernel = x.anchored && y.anchored ? x.distance + y.distance : kInf;
+    const double through_kernel =
+        x.anchored && y.anchored ? x.distance + y.distance : kInf;
     const auto edge = x.neighbors.find(b);
-    return edge == x.neighbors.end() ? through_kernel : std::min(edge->second, through_kernel);
+    return edge == x.neighbors.end() ? through_kernel
+                                     : std::min(edge->second, through_kernel);
   }
 
   double Phi(int a, int b) const {
@@ -190,11 +192,13 @@ class RadialAgglomeration {
   void PushCandidates(int c) {
     const bool anchored = clusters_[c].anchored;
     for (const auto& [other, weight] : clusters_[c].neighbors) {
-      if (Allowed(c, other) && !(anchored && clusters_[other].anchored)) Push(c, other);
+      if (Allowed(c, other) && !(anchored && clusters_[other].anchored))
+        Push(c, other);
     }
     if (!anchored) return;
     for (const int other : anchored_) {
-      if (other != c && clusters_[other].alive && clusters_[other].anchored) Push(c, other);
+      if (other != c && clusters_[other].alive && clusters_[other].anchored)
+        Push(c, other);
     }
   }
 
@@ -229,7 +233,6 @@ class RadialAgglomeration {
       auto& theirs = clusters_[other].neighbors;
       theirs.erase(b);
       theirs[a] = lightest;
-      ++clusters_[other].version;
     }
     keep.neighbors.erase(b);
     gone.alive = false;
@@ -237,15 +240,13 @@ class RadialAgglomeration {
     gone.neighbors.clear();
     ++keep.version;
     --num_alive_;
-    // Every neighbour's candidates with the merged cluster changed.
-    for (const auto& [other, weight] : keep.neighbors) {
-      ++clusters_[other].version;
-      PushCandidates(other);
-    }
+    // Pairs with the merged cluster are re-pushed by the caller; the
+    // version bump above invalidates the old ones. Other pairs are intact.
     if (anchored_.size() > 2 * static_cast<size_t>(num_alive_)) {
-      anchored_.erase(std::remove_if(anchored_.begin(), anchored_.end(),
-                                     [&](int c) { return !clusters_[c].alive; }),
-                      anchored_.end());
+      anchored_.erase(
+          std::remove_if(anchored_.begin(), anchored_.end(),
+                         [&](int c) { return !clusters_[c].alive; }),
+          anchored_.end());
     }
     return a;
   }
