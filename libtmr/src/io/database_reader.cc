@@ -86,9 +86,9 @@ std::string JoinConfigs(const std::vector<int>& configs) {
 // marks, per image, which keypoints take part in an inlier match.
 void ReadVerifiedPairs(const ReadOnlySqlite& db,
                        const MatchGraphOptions& options, MatchGraph* graph) {
-  std::vector<std::vector<bool>> matched(graph->images.size());
+  std::vector<std::vector<uint8_t>> matched(graph->images.size());
   for (size_t i = 0; i < graph->images.size(); ++i) {
-    matched[i].assign(graph->images[i].num_keypoints, false);
+    matched[i].assign(graph->images[i].num_keypoints, 0);
   }
   Statement stmt(db,
                  "SELECT pair_id, rows, cols, config, data "
@@ -99,37 +99,38 @@ void ReadVerifiedPairs(const ReadOnlySqlite& db,
     const int64_t pair_id = stmt.Int(0);
     const int64_t rows = stmt.Int(1);
     const int64_t cols = stmt.Int(2);
-    const std::string where =
-        "two_view_geometries pair_id " + std::to_string(pair_id);
-    if (pair_id < 0) db.Fail(where + " is negative");
+    auto where = [pair_id] {
+      return "two_view_geometries pair_id " + std::to_string(pair_id);
+    };
+    if (pair_id < 0) db.Fail(where() + " is negative");
     const int64_t id2 = pair_id % kMaxNumImages;
     const int64_t id1 = (pair_id - id2) / kMaxNumImages;
-    if (id1 > kMaxNumImages) db.Fail(where + " is out of range");
+    if (id1 > kMaxNumImages) db.Fail(where() + " is out of range");
     const int index1 = graph->FindImageIndex(static_cast<uint32_t>(id1));
     const int index2 = graph->FindImageIndex(static_cast<uint32_t>(id2));
     if (index1 < 0 || index2 < 0 || index1 == index2) {
-      db.Fail(where + " names image_id " + std::to_string(id1) + " and " +
+      db.Fail(where() + " names image_id " + std::to_string(id1) + " and " +
               std::to_string(id2) + ", which are not two distinct images");
     }
     if (cols != 2 || rows > std::numeric_limits<int32_t>::max()) {
-      db.Fail(where + " has " + std::to_string(rows) + " x " +
+      db.Fail(where() + " has " + std::to_string(rows) + " x " +
               std::to_string(cols) + " inlier matches (expected N x 2)");
     }
     const int64_t expected_bytes = rows * cols * 4;
     if (stmt.IsNull(4) || stmt.BlobBytes(4) != expected_bytes) {
-      db.Fail(where + " has a data blob of " +
+      db.Fail(where() + " has a data blob of " +
               std::to_string(stmt.IsNull(4) ? 0 : stmt.BlobBytes(4)) +
               " bytes, expected rows x cols x 4 = " +
               std::to_string(expected_bytes));
     }
     const auto* data = static_cast<const unsigned char*>(stmt.Blob(4));
-    std::vector<bool>& matched1 = matched[index1];
-    std::vector<bool>& matched2 = matched[index2];
+    std::vector<uint8_t>& matched1 = matched[index1];
+    std::vector<uint8_t>& matched2 = matched[index2];
     for (int64_t r = 0; r < rows; ++r) {
       uint32_t idx[2];
       std::memcpy(idx, data + r * 8, 8);
       if (idx[0] >= matched1.size() || idx[1] >= matched2.size()) {
-        db.Fail(where + " matches keypoint " + std::to_string(idx[0]) +
+        db.Fail(where() + " matches keypoint " + std::to_string(idx[0]) +
                 " of image_id " + std::to_string(id1) + " (" +
                 std::to_string(matched1.size()) + " keypoints) to keypoint " +
                 std::to_string(idx[1]) + " of image_id " + std::to_string(id2) +
@@ -143,7 +144,7 @@ void ReadVerifiedPairs(const ReadOnlySqlite& db,
   }
   for (size_t i = 0; i < graph->images.size(); ++i) {
     graph->images[i].num_matched_keypoints = static_cast<int>(
-        std::count(matched[i].begin(), matched[i].end(), true));
+        std::count(matched[i].begin(), matched[i].end(), 1));
   }
   std::sort(graph->pairs.begin(), graph->pairs.end(),
             [](const MatchGraphPair& a, const MatchGraphPair& b) {
