@@ -13,7 +13,7 @@ function(run)
 endfunction()
 
 run(${TMR_SYNTH} --database_path ${WORK_DIR}/database.db --model_path ${WORK_DIR}/gt
-    --family city --city_blocks_x 1 --city_blocks_y 1 --point_density 5 --seed 3)
+    --family city --city_blocks_x 1 --city_blocks_y 1 --seed 0)
 run(${COLMAP} mapper --database_path ${WORK_DIR}/database.db
     --image_path ${WORK_DIR}/images --output_path ${WORK_DIR}/sparse
     --Mapper.num_threads 2)

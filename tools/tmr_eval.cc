@@ -15,6 +15,8 @@
 #include "tmr/colmap/model_evaluation.h"
 
 namespace fs = std::filesystem;
+#include "tmr_options.h"
+
 namespace po = boost::program_options;
 
 namespace {
@@ -75,17 +77,10 @@ int main(int argc, char** argv) {
       "displaced images forming a rigid part that make a wrong merge")(
       "seed", po::value(&options.seed)->default_value(options.seed),
       "RANSAC seed");
-  try {
-    po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << desc << "\n";
-      return 0;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    std::cerr << "tmr_eval: error: " << e.what() << " (see --help)\n";
-    return 2;
+  po::variables_map vm;
+  if (const auto exit_code =
+          tmr::ParseCommandLine("tmr_eval", argc, argv, desc, &vm)) {
+    return *exit_code;
   }
   std::string error;
   if (!options.Check(&error)) {

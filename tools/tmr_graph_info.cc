@@ -11,6 +11,8 @@
 #include "tmr/scene/graph_summary.h"
 #include "tmr/scene/image_graph.h"
 
+#include "tmr_options.h"
+
 namespace po = boost::program_options;
 
 int main(int argc, char** argv) {
@@ -27,17 +29,10 @@ int main(int argc, char** argv) {
       "minimum inlier matches for a pair to count")(
       "histogram_csv", po::value(&histogram_csv),
       "write the histogram of s_ij (50 bins over [0, 1]) as CSV");
-  try {
-    po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << desc << "\n";
-      return 0;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    std::cerr << "tmr_graph_info: error: " << e.what() << " (see --help)\n";
-    return 2;
+  po::variables_map vm;
+  if (const auto exit_code =
+          tmr::ParseCommandLine("tmr_graph_info", argc, argv, desc, &vm)) {
+    return *exit_code;
   }
   try {
     const auto start = std::chrono::steady_clock::now();

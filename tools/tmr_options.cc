@@ -5,10 +5,29 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 
 namespace tmr {
 
 namespace po = boost::program_options;
+
+std::optional<int> ParseCommandLine(const std::string& tool, int argc,
+                                    char** argv,
+                                    const po::options_description& desc,
+                                    po::variables_map* vm) {
+  try {
+    po::store(po::parse_command_line(argc, argv, desc), *vm);
+    if (vm->count("help")) {
+      std::cout << desc << "\n";
+      return 0;
+    }
+    po::notify(*vm);
+  } catch (const po::error& e) {
+    std::cerr << tool << ": error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  return std::nullopt;
+}
 
 void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
   auto add = [&](const char* name, auto* value, const char* help) {
@@ -41,19 +60,6 @@ void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
       "RAC weight of the radial difference");
   add("Tmr.sigma4", &o->leaf_clustering.sigma4,
       "RAC weight of the merged size");
-}
-
-bool WriteFileAtomically(const std::string& path, const std::string& content) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << content;
-    out.flush();
-    if (!out) return false;
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  return !ec;
 }
 
 void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {

@@ -3,20 +3,26 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 
+#include "tmr/io/atomic_file.h"
 #include "tmr/partition/tmr_tree.h"
 
 namespace tmr {
 
+// Parses the command line of `tool`. Returns nothing when the tool should
+// go on, or its exit code: 0 after printing --help, 2 after printing one
+// "TOOL: error: ..." line for bad options.
+std::optional<int> ParseCommandLine(
+    const std::string& tool, int argc, char** argv,
+    const boost::program_options::options_description& desc,
+    boost::program_options::variables_map* vm);
+
 // Registers --Tmr.<name> for every field of TmrTreeOptions, with defaults.
 void AddTmrTreeOptions(boost::program_options::options_description* desc,
                        TmrTreeOptions* options);
-
-// Writes a file through a temporary name and a rename, so that an
-// interrupted run never leaves a half-written file. False on failure.
-bool WriteFileAtomically(const std::string& path, const std::string& content);
 
 // Prints kernels, image clusters and leaf clusters with their sizes, the
 // unclustered images and the time per stage.

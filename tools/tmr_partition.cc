@@ -35,17 +35,10 @@ int main(int argc, char** argv) {
       "picture", po::value(&picture)->default_value(picture),
       "draw partition.png");
   tmr::AddTmrTreeOptions(&desc, &tree_options);
-  try {
-    po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << desc << "\n";
-      return 0;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    std::cerr << "tmr_partition: error: " << e.what() << " (see --help)\n";
-    return 2;
+  po::variables_map vm;
+  if (const auto exit_code =
+          tmr::ParseCommandLine("tmr_partition", argc, argv, desc, &vm)) {
+    return *exit_code;
   }
   std::string error;
   if (!tree_options.Check(&error) || !graph_options.Check(&error)) {

@@ -9,6 +9,8 @@
 
 #include "tmr/colmap/synthetic_scene.h"
 
+#include "tmr_options.h"
+
 namespace po = boost::program_options;
 
 namespace {
@@ -73,17 +75,10 @@ int main(int argc, char** argv) {
       "raw-match outliers per inlier");
   Add(&desc, "false_pairs_per_100_images", &o.false_pairs_per_100_images,
       "false verified pairs");
-  try {
-    po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << desc << "\n";
-      return 0;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    std::cerr << "tmr_synth: error: " << e.what() << " (see --help)\n";
-    return 2;
+  po::variables_map vm;
+  if (const auto exit_code =
+          tmr::ParseCommandLine("tmr_synth", argc, argv, desc, &vm)) {
+    return *exit_code;
   }
   const auto start = std::chrono::steady_clock::now();
   std::string error;

@@ -143,8 +143,8 @@ void ReadVerifiedPairs(const ReadOnlySqlite& db,
                             static_cast<int>(stmt.Int(3))});
   }
   for (size_t i = 0; i < graph->images.size(); ++i) {
-    graph->images[i].num_matched_keypoints = static_cast<int>(
-        std::count(matched[i].begin(), matched[i].end(), 1));
+    graph->images[i].num_matched_keypoints =
+        static_cast<int>(std::count(matched[i].begin(), matched[i].end(), 1));
   }
   std::sort(graph->pairs.begin(), graph->pairs.end(),
             [](const MatchGraphPair& a, const MatchGraphPair& b) {

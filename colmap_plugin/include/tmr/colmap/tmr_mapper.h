@@ -1,0 +1,90 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tmr/io/database_reader.h"
+#include "tmr/partition/tmr_tree.h"
+
+namespace tmr {
+
+// COLMAP mapper options that tmr_mapper passes through (--Mapper.*); the
+// defaults are COLMAP's.
+struct MapperPassThroughOptions {
+  int min_num_matches = 15;                // --Mapper.min_num_matches
+  bool ignore_watermarks = false;          // --Mapper.ignore_watermarks
+  int init_min_num_inliers = 100;          // --Mapper.init_min_num_inliers
+  int abs_pose_min_num_inliers = 30;       // --Mapper.abs_pose_min_num_inliers
+  double filter_max_reproj_error = 4.0;    // --Mapper.filter_max_reproj_error
+  double tri_min_angle = 1.5;              // --Mapper.tri_min_angle
+  bool ba_refine_focal_length = true;      // --Mapper.ba_refine_focal_length
+  bool ba_refine_principal_point = false;  // --Mapper.ba_refine_principal_point
+  bool ba_refine_extra_params = true;      // --Mapper.ba_refine_extra_params
+  int ba_global_max_num_iterations =
+      50;  // --Mapper.ba_global_max_num_iterations
+};
+
+struct TmrMapperOptions {
+  std::string database_path;  // read-only
+  std::string image_path;     // optional: colours are skipped when empty
+  std::string output_path;    // models 0, 1, ... plus tree.json and report
+  // Worker threads (-1: all cores); this many tasks run at once.
+  int num_threads = -1;
+  // Keep the kernel's poses fixed when leaf clusters extend it.
+  bool fix_base_in_leaves = true;
+  // tau of the merge rule (paper Sec. 5).
+  int merge_min_shared_tracks = 12;
+  // Global bundle adjustment after each merge.
+  bool refine_merged_models = true;
+  // Keep the task databases and models in output_path/.tmr_work.
+  bool keep_work = false;
+  MatchGraphOptions match_graph;
+  TmrTreeOptions tree;
+  MapperPassThroughOptions mapper;
+
+  bool Check(std::string* error = nullptr) const;
+};
+
+struct TmrTaskReport {
+  std::string name;  // "kernel 3", "leaf 3.1", "merge cluster 3", ...
+  int num_images = 0;
+  int num_registered = 0;
+  double seconds = 0.0;
+  bool success = false;
+  std::string message;
+};
+
+struct TmrMapperReport {
+  int num_images = 0;
+  std::vector<int>
+      model_sizes;  // registered images per output model, largest first
+  std::vector<TmrTaskReport> tasks;
+  double partition_seconds = 0.0;
+  double total_seconds = 0.0;
+};
+
+// Reconstructs the database on its TMR-tree (paper Sec. 5): kernels in
+// parallel, each seeded at its exemplar; then leaf clusters in parallel,
+// each extending a copy of its kernel's model; leaf models are merged into
+// image-cluster models, and those into scene models when the merge rule
+// finds a reliable similarity; the rest stay separate models. Writes
+// output_path/0, 1, ... (largest first, COLMAP binary), tree.json,
+// partition.png and report.json; every model appears only when complete.
+// `progress` receives one line per finished step. Returns false with a
+// reason in `error`.
+bool RunTmrMapper(
+    const TmrMapperOptions& options, TmrMapperReport* report,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress = nullptr);
+
+}  // namespace tmr
+
+namespace tmr {
+
+// Sets up COLMAP's logging (glog) for a command-line tool: to stderr,
+// warnings and errors only unless `verbose`.
+void ConfigureColmapLogging(const char* program, bool verbose);
+
+}  // namespace tmr

@@ -1,0 +1,464 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/colmap/tmr_mapper.h"
+
+#include <colmap/estimators/alignment.h>
+#include <colmap/scene/database.h>
+#include <colmap/scene/database_cache.h>
+#include <glog/logging.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "sfm/model_merging.h"
+#include "sfm/reconstruction_task.h"
+#include "sfm/task_database.h"
+#include "tmr/io/atomic_file.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+colmap::IncrementalMapperOptions ColmapOptions(
+    const MapperPassThroughOptions& m, int num_threads) {
+  colmap::IncrementalMapperOptions o;
+  o.min_num_matches = m.min_num_matches;
+  o.ignore_watermarks = m.ignore_watermarks;
+  o.mapper.init_min_num_inliers = m.init_min_num_inliers;
+  o.mapper.abs_pose_min_num_inliers = m.abs_pose_min_num_inliers;
+  o.mapper.filter_max_reproj_error = m.filter_max_reproj_error;
+  o.triangulation.min_angle = m.tri_min_angle;
+  o.ba_refine_focal_length = m.ba_refine_focal_length;
+  o.ba_refine_principal_point = m.ba_refine_principal_point;
+  o.ba_refine_extra_params = m.ba_refine_extra_params;
+  o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
+  o.num_threads = num_threads;
+  return o;
+}
+
+// Runs jobs on `workers` threads; job i gets index i.
+void RunParallel(int num_jobs, int workers,
+                 const std::function<void(int)>& job) {
+  std::atomic<int> next{0};
+  std::vector<std::thread> threads;
+  for (int w = 0; w < std::max(1, std::min(workers, num_jobs)); ++w) {
+    threads.emplace_back([&] {
+      for (int i = next++; i < num_jobs; i = next++) job(i);
+    });
+  }
+  for (std::thread& t : threads) t.join();
+}
+
+std::vector<uint32_t> Ids(const TmrTree& tree,
+                          const std::vector<int>& vertices) {
+  std::vector<uint32_t> ids;
+  for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
+  return ids;
+}
+
+std::string ReportJson(const TmrMapperReport& r) {
+  std::ostringstream out;
+  out << "{\"num_images\": " << r.num_images
+      << ", \"partition_s\": " << r.partition_seconds
+      << ", \"total_s\": " << r.total_seconds << ", \"model_sizes\": [";
+  for (size_t i = 0; i < r.model_sizes.size(); ++i)
+    out << (i ? ", " : "") << r.model_sizes[i];
+  out << "], \"tasks\": [";
+  for (size_t i = 0; i < r.tasks.size(); ++i) {
+    const TmrTaskReport& t = r.tasks[i];
+    out << (i ? ",\n  " : "\n  ") << "{\"task\": \"" << t.name
+        << "\", \"images\": " << t.num_images
+        << ", \"registered\": " << t.num_registered
+        << ", \"seconds\": " << t.seconds
+        << ", \"success\": " << (t.success ? "true" : "false")
+        << ", \"message\": \"";
+    for (const char c : t.message)
+      out << (c == '"' || c == '\\' ? "\\" : "") << c;
+    out << "\"}";
+  }
+  out << "\n]}\n";
+  return out.str();
+}
+
+class TmrMapperRun {
+ public:
+  TmrMapperRun(const TmrMapperOptions& options, TmrMapperReport* report,
+               const std::function<void(const std::string&)>& progress)
+      : o_(options), report_(report), progress_(progress) {
+    threads_ = o_.num_threads > 0
+                   ? o_.num_threads
+                   : std::max(1u, std::thread::hardware_concurrency());
+    work_ = fs::path(o_.output_path) / ".tmr_work";
+  }
+
+  bool Run(std::string* error) {
+    const auto start = Clock::now();
+    const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
+    if (graph.NumImages() == 0)
+      return Fail("the database has no images", error);
+    if (graph.NumPairs() == 0)
+      return Fail("the database has no verified image pairs", error);
+    tree_ = BuildTmrTree(graph, o_.tree);
+    report_->num_images = graph.NumImages();
+    report_->partition_seconds = Since(start);
+    fs::create_directories(work_);
+    std::ostringstream json;
+    WriteTmrTreeJson(tree_, json);
+    if (!WriteFileAtomically((fs::path(o_.output_path) / "tree.json").string(),
+                             json.str())) {
+      return Fail("cannot write tree.json in '" + o_.output_path + "'", error);
+    }
+    Progress("partition: " + std::to_string(tree_.kernels.size()) +
+             " kernels, " + std::to_string(tree_.unclustered.size()) +
+             " unclustered images (" +
+             std::to_string(report_->partition_seconds) + " s)");
+    if (tree_.kernels.empty())
+      return Fail("the partition found no kernel", error);
+
+    RunKernels();
+    RunLeaves();
+    const auto cache = LoadDatabaseCache(error);
+    if (!cache) return false;
+    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters =
+        MergeClusters(cache);
+    std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
+        MergeScenes(cache, clusters);
+    if (!WriteModels(scenes, error)) return false;
+    report_->total_seconds = Since(start);
+    WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
+                        ReportJson(*report_));
+    if (!o_.keep_work) fs::remove_all(work_);
+    return true;
+  }
+
+ private:
+  bool Fail(const std::string& message, std::string* error) {
+    *error = message;
+    return false;
+  }
+
+  void Progress(const std::string& line) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (progress_) progress_(line);
+  }
+
+  void Record(const TmrTaskReport& task, int done, int total,
+              Clock::time_point stage_start) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    report_->tasks.push_back(task);
+    if (!progress_) return;
+    const double elapsed = Since(stage_start);
+    std::ostringstream line;
+    line.precision(1);
+    line << std::fixed << task.name << " (" << done << "/" << total
+         << "): " << task.num_registered << "/" << task.num_images
+         << " images in " << task.seconds << " s"
+         << (task.success ? "" : " FAILED: " + task.message) << "; stage ETA "
+         << elapsed / done * (total - done) << " s";
+    progress_(line.str());
+  }
+
+  std::string KernelModel(int k) const {
+    return (work_ / ("kernel" + std::to_string(k))).string();
+  }
+  std::string LeafModel(int k, int l) const {
+    return (work_ / ("leaf" + std::to_string(k) + "_" + std::to_string(l)))
+        .string();
+  }
+
+  int TaskThreads(int num_tasks) const {
+    return std::max(1, threads_ / std::max(1, std::min(threads_, num_tasks)));
+  }
+
+  void RunKernels() {
+    const int n = static_cast<int>(tree_.kernels.size());
+    const auto start = Clock::now();
+    std::atomic<int> done{0};
+    kernel_ok_.assign(n, false);
+    base_registered_.assign(n, 0);
+    const auto mapper = ColmapOptions(o_.mapper, TaskThreads(n));
+    RunParallel(n, threads_, [&](int k) {
+      const TmrKernelNode& node = tree_.kernels[k];
+      TmrTaskReport task;
+      task.name = "kernel " + std::to_string(k);
+      task.num_images = static_cast<int>(node.kernel_images.size());
+      const std::string db = KernelModel(k) + ".db";
+      std::string error;
+      if (!WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images),
+                             db, &error)) {
+        task.message = error;
+      } else {
+        // The exemplar first with COLMAP's choice of a second image (most
+        // matches, wide enough baseline), then with ours.
+        std::vector<std::pair<int, int>> pairs = {
+            {tree_.image_ids[node.exemplar], -1}};
+        for (const int second : node.second_images) {
+          pairs.emplace_back(tree_.image_ids[node.exemplar],
+                             tree_.image_ids[second]);
+        }
+        const auto result =
+            RunReconstructionTask(mapper, db, "", pairs, KernelModel(k));
+        task.num_registered = result.num_registered;
+        task.seconds = result.seconds;
+        task.success = result.success;
+        task.message = result.message;
+        kernel_ok_[k] = result.success;
+        base_registered_[k] = result.num_registered;
+      }
+      Record(task, ++done, n, start);
+    });
+  }
+
+  void RunLeaves() {
+    std::vector<std::pair<int, int>> jobs;
+    for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+      if (!kernel_ok_[k]) continue;
+      for (int l = 0;
+           l < static_cast<int>(tree_.kernels[k].leaf_clusters.size()); ++l) {
+        jobs.emplace_back(k, l);
+      }
+    }
+    const int n = static_cast<int>(jobs.size());
+    leaf_ok_.assign(n, false);
+    leaf_jobs_ = jobs;
+    const auto start = Clock::now();
+    std::atomic<int> done{0};
+    auto mapper = ColmapOptions(o_.mapper, TaskThreads(n));
+    mapper.fix_existing_images = o_.fix_base_in_leaves;
+    RunParallel(n, threads_, [&](int j) {
+      const auto [k, l] = jobs[j];
+      const TmrKernelNode& node = tree_.kernels[k];
+      std::vector<int> images = node.kernel_images;
+      images.insert(images.end(), node.leaf_clusters[l].begin(),
+                    node.leaf_clusters[l].end());
+      TmrTaskReport task;
+      task.name = "leaf " + std::to_string(k) + "." + std::to_string(l);
+      task.num_images = static_cast<int>(node.leaf_clusters[l].size());
+      const std::string db = LeafModel(k, l) + ".db";
+      std::string error;
+      if (!WriteTaskDatabase(o_.database_path, Ids(tree_, images), db,
+                             &error)) {
+        task.message = error;
+      } else {
+        const auto result = RunReconstructionTask(mapper, db, KernelModel(k),
+                                                  {}, LeafModel(k, l));
+        task.num_registered = result.num_registered - base_registered_[k];
+        task.seconds = result.seconds;
+        task.success = result.success;
+        task.message = result.message;
+        leaf_ok_[j] = result.success;
+      }
+      Record(task, ++done, n, start);
+    });
+  }
+
+  // One database cache of all clustered images, from a copy of the input
+  // (COLMAP's Database class writes to the file it opens).
+  std::shared_ptr<colmap::DatabaseCache> LoadDatabaseCache(std::string* error) {
+    std::vector<uint32_t> ids;
+    for (const TmrKernelNode& node : tree_.kernels) {
+      for (const int v : node.cluster_images) ids.push_back(tree_.image_ids[v]);
+    }
+    const std::string db = (work_ / "merge.db").string();
+    if (!WriteTaskDatabase(o_.database_path, ids, db, error)) return nullptr;
+    colmap::Database database(db);
+    return colmap::DatabaseCache::Create(database, o_.mapper.min_num_matches,
+                                         o_.mapper.ignore_watermarks, {});
+  }
+
+  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeClusters(
+      const std::shared_ptr<colmap::DatabaseCache>& cache) {
+    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
+    const auto mapper = ColmapOptions(o_.mapper, threads_);
+    for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+      if (!kernel_ok_[k]) continue;
+      const auto start = Clock::now();
+      auto model = std::make_shared<colmap::Reconstruction>();
+      model->ReadBinary(KernelModel(k));
+      int leaves = 0;
+      for (size_t j = 0; j < leaf_jobs_.size(); ++j) {
+        if (leaf_jobs_[j].first != k || !leaf_ok_[j]) continue;
+        colmap::Reconstruction leaf;
+        leaf.ReadBinary(LeafModel(k, leaf_jobs_[j].second));
+        // The mapper normalises every model after global bundle adjustment,
+        // so even with fixed kernel poses a leaf model has its own frame:
+        // align it on the kernel images both share, with COLMAP's own
+        // reprojection-verified alignment.
+        colmap::Sim3d model_from_leaf;
+        if (!colmap::AlignReconstructionsViaReprojections(
+                leaf, *model,
+                /*min_inlier_observations=*/0.3,
+                /*max_reproj_error=*/8.0, &model_from_leaf)) {
+          Progress("leaf " + std::to_string(k) + "." +
+                   std::to_string(leaf_jobs_[j].second) +
+                   ": cannot be aligned to its kernel, left out");
+          continue;
+        }
+        AppendReconstruction(leaf, model_from_leaf, model.get());
+        ++leaves;
+      }
+      if (leaves > 0)
+        RefineMergedModel(cache, mapper, o_.refine_merged_models, model);
+      TmrTaskReport task{
+          "merge cluster " + std::to_string(k),
+          static_cast<int>(tree_.kernels[k].cluster_images.size()),
+          static_cast<int>(model->NumRegImages()),
+          Since(start),
+          true,
+          std::to_string(leaves) + " leaf models"};
+      Record(task, k + 1, static_cast<int>(tree_.kernels.size()), start);
+      clusters.push_back(model);
+    }
+    return clusters;
+  }
+
+  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
+      const std::shared_ptr<colmap::DatabaseCache>& cache,
+      std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) {
+    std::sort(clusters.begin(), clusters.end(),
+              [](const auto& a, const auto& b) {
+                return a->NumRegImages() > b->NumRegImages();
+              });
+    const auto mapper = ColmapOptions(o_.mapper, threads_);
+    ModelAlignmentOptions align;
+    align.min_shared_tracks = o_.merge_min_shared_tracks;
+    align.seed = static_cast<unsigned>(o_.tree.seed);
+    std::vector<std::shared_ptr<colmap::Reconstruction>> scenes;
+    // Each cluster model joins the first (largest) scene it aligns with;
+    // repeat until nothing merges, since a merge can create new overlaps.
+    bool merged = true;
+    while (merged) {
+      merged = false;
+      std::vector<std::shared_ptr<colmap::Reconstruction>> next;
+      for (const auto& model : clusters) {
+        bool joined = false;
+        for (const auto& scene : next) {
+          const auto start = Clock::now();
+          const ModelAlignment a = AlignModelsBySharedTracks(
+              *scene, *model, *cache->CorrespondenceGraph(), align);
+          TmrTaskReport task{"merge scene",
+                             static_cast<int>(model->NumRegImages()),
+                             0,
+                             0.0,
+                             a.success,
+                             a.success
+                                 ? std::to_string(a.num_inliers) + " of " +
+                                       std::to_string(a.num_shared_tracks) +
+                                       " shared tracks fit"
+                                 : a.reason};
+          if (a.success) {
+            AppendReconstruction(*model, a.target_from_source, scene.get());
+            RefineMergedModel(cache, mapper, o_.refine_merged_models, scene);
+            task.num_registered = static_cast<int>(scene->NumRegImages());
+          }
+          task.seconds = Since(start);
+          Record(task, 1, 1, start);
+          if (a.success) {
+            joined = merged = true;
+            break;
+          }
+        }
+        if (!joined) next.push_back(model);
+      }
+      clusters = std::move(next);
+      std::sort(clusters.begin(), clusters.end(),
+                [](const auto& a, const auto& b) {
+                  return a->NumRegImages() > b->NumRegImages();
+                });
+      scenes = clusters;
+      if (scenes.size() <= 1) break;
+    }
+    return scenes;
+  }
+
+  bool WriteModels(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
+      std::string* error) {
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      if (!o_.image_path.empty())
+        scenes[i]->ExtractColorsForAllImages(o_.image_path);
+      const std::string path =
+          (fs::path(o_.output_path) / std::to_string(i)).string();
+      if (!WriteModelAtomically(*scenes[i], path)) {
+        return Fail("cannot write model '" + path + "'", error);
+      }
+      report_->model_sizes.push_back(
+          static_cast<int>(scenes[i]->NumRegImages()));
+    }
+    Progress("wrote " + std::to_string(scenes.size()) + " models to " +
+             o_.output_path);
+    return true;
+  }
+
+  const TmrMapperOptions& o_;
+  TmrMapperReport* report_;
+  std::function<void(const std::string&)> progress_;
+  int threads_ = 1;
+  fs::path work_;
+  TmrTree tree_;
+  std::vector<bool> kernel_ok_, leaf_ok_;
+  std::vector<int> base_registered_;  // images registered by each kernel task
+  std::vector<std::pair<int, int>> leaf_jobs_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+bool TmrMapperOptions::Check(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (database_path.empty()) return fail("database_path is empty");
+  if (output_path.empty()) return fail("output_path is empty");
+  if (num_threads == 0 || num_threads < -1)
+    return fail("num_threads must be -1 or >= 1");
+  if (merge_min_shared_tracks < 3)
+    return fail("merge_min_shared_tracks must be >= 3");
+  if (mapper.min_num_matches < 1)
+    return fail("Mapper.min_num_matches must be >= 1");
+  return match_graph.Check(error) && tree.Check(error);
+}
+
+bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
+                  std::string* error,
+                  const std::function<void(const std::string&)>& progress) {
+  if (!options.Check(error)) return false;
+  if (!options.image_path.empty() && !fs::is_directory(options.image_path)) {
+    *error = "image_path '" + options.image_path + "' is not a folder";
+    return false;
+  }
+  std::error_code ec;
+  fs::create_directories(options.output_path, ec);
+  if (ec) {
+    *error = "cannot create output_path '" + options.output_path +
+             "': " + ec.message();
+    return false;
+  }
+  TmrMapperOptions effective = options;
+  effective.match_graph.min_num_matches = options.mapper.min_num_matches;
+  *report = TmrMapperReport();
+  TmrMapperRun run(effective, report, progress);
+  return run.Run(error);
+}
+
+}  // namespace tmr
+
+namespace tmr {
+
+void ConfigureColmapLogging(const char* program, bool verbose) {
+  FLAGS_logtostderr = true;
+  FLAGS_minloglevel = verbose ? google::GLOG_INFO : google::GLOG_WARNING;
+  if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(program);
+}
+
+}  // namespace tmr

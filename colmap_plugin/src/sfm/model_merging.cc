@@ -1,0 +1,186 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "sfm/model_merging.h"
+
+#include <colmap/estimators/similarity_transform.h>
+#include <colmap/math/random.h>
+#include <colmap/optim/loransac.h>
+#include <colmap/sfm/incremental_mapper.h>
+
+#include <algorithm>
+#include <unordered_set>
+
+namespace tmr {
+namespace {
+
+using Sim3Ransac =
+    colmap::LORANSAC<colmap::SimilarityTransformEstimator<3, true>,
+                     colmap::SimilarityTransformEstimator<3, true>>;
+
+struct SharedTrack {
+  Eigen::Vector3d target_xyz;
+  Eigen::Vector3d source_xyz;
+  double viewing_distance;       // from the target camera that sees it
+  colmap::image_t target_image;  // a target image observing the track
+  Eigen::Vector2d target_xy;     // its observation there
+};
+
+// The tracks of a source image that are reconstructed in the target.
+std::vector<SharedTrack> SharedTracks(const colmap::Reconstruction& target,
+                                      const colmap::Reconstruction& source,
+                                      const colmap::CorrespondenceGraph& graph,
+                                      colmap::image_t source_image) {
+  std::vector<SharedTrack> shared;
+  const colmap::Image& image = source.Image(source_image);
+  for (colmap::point2D_t idx = 0; idx < image.NumPoints2D(); ++idx) {
+    const colmap::Point2D& point2D = image.Point2D(idx);
+    if (!point2D.HasPoint3D() || !graph.ExistsImage(source_image)) continue;
+    const auto range = graph.FindCorrespondences(source_image, idx);
+    for (auto it = range.beg; it != range.end; ++it) {
+      if (!target.ExistsImage(it->image_id) ||
+          !target.IsImageRegistered(it->image_id))
+        continue;
+      const colmap::Image& other = target.Image(it->image_id);
+      const colmap::Point2D& match = other.Point2D(it->point2D_idx);
+      if (!match.HasPoint3D()) continue;
+      const Eigen::Vector3d xyz = target.Point3D(match.point3D_id).xyz;
+      shared.push_back({xyz, source.Point3D(point2D.point3D_id).xyz,
+                        (xyz - other.ProjectionCenter()).norm(), it->image_id,
+                        match.xy});
+      break;  // one target point per source track
+    }
+  }
+  return shared;
+}
+
+}  // namespace
+
+ModelAlignment AlignModelsBySharedTracks(
+    const colmap::Reconstruction& target, const colmap::Reconstruction& source,
+    const colmap::CorrespondenceGraph& graph,
+    const ModelAlignmentOptions& options) {
+  ModelAlignment result;
+  std::vector<SharedTrack> best, all;
+  for (const colmap::image_t image_id : source.RegImageIds()) {
+    if (target.ExistsImage(image_id) && target.IsImageRegistered(image_id))
+      continue;
+    std::vector<SharedTrack> shared =
+        SharedTracks(target, source, graph, image_id);
+    all.insert(all.end(), shared.begin(), shared.end());
+    if (shared.size() > best.size()) {
+      best = std::move(shared);
+      result.anchor_image = image_id;
+    }
+  }
+  result.num_shared_tracks = static_cast<int>(best.size());
+  if (result.num_shared_tracks <= options.min_shared_tracks) {
+    result.reason = "best image shares " +
+                    std::to_string(result.num_shared_tracks) +
+                    " tracks (needs more than " +
+                    std::to_string(options.min_shared_tracks) + ")";
+    return result;
+  }
+  std::vector<Eigen::Vector3d> src, tgt;
+  std::vector<double> distances;
+  for (const SharedTrack& t : best) {
+    src.push_back(t.source_xyz);
+    tgt.push_back(t.target_xyz);
+    distances.push_back(t.viewing_distance);
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2,
+                   distances.end());
+  colmap::RANSACOptions ransac;
+  ransac.max_error =
+      options.max_relative_error * distances[distances.size() / 2];
+  ransac.min_inlier_ratio = options.min_inlier_ratio;
+  ransac.max_num_trials = 5000;
+  colmap::SetPRNGSeed(options.seed);
+  Sim3Ransac estimator(ransac);
+  const auto report = estimator.Estimate(src, tgt);
+  result.num_inliers = static_cast<int>(report.support.num_inliers);
+  if (!report.success || result.num_inliers <= options.min_shared_tracks ||
+      result.num_inliers < options.min_inlier_ratio * best.size()) {
+    result.reason =
+        "no similarity fits: " + std::to_string(result.num_inliers) + " of " +
+        std::to_string(best.size()) + " shared tracks agree";
+    return result;
+  }
+  // Verification on every shared track of every image: the source point,
+  // moved into the target, must reproject onto its target observation.
+  const colmap::Sim3d sim = colmap::Sim3d::FromMatrix(report.model);
+  int consistent = 0;
+  for (const SharedTrack& t : all) {
+    const colmap::Image& image = target.Image(t.target_image);
+    const Eigen::Vector3d in_camera =
+        image.CamFromWorld() * (sim * t.source_xyz);
+    if (in_camera.z() <= 0) continue;
+    const Eigen::Vector2d xy =
+        target.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized());
+    if ((xy - t.target_xy).norm() <= options.max_reprojection_error_px)
+      ++consistent;
+  }
+  if (consistent < options.min_inlier_ratio * all.size()) {
+    result.reason = "the similarity fits the anchor image but only " +
+                    std::to_string(consistent) + " of " +
+                    std::to_string(all.size()) +
+                    " shared tracks reproject within " +
+                    std::to_string(options.max_reprojection_error_px) + " px";
+    return result;
+  }
+  result.target_from_source = sim;
+  result.success = true;
+  return result;
+}
+
+void AppendReconstruction(const colmap::Reconstruction& source,
+                          const colmap::Sim3d& target_from_source,
+                          colmap::Reconstruction* target) {
+  colmap::Reconstruction moved = source;
+  moved.Transform(target_from_source);
+  for (const auto& [camera_id, camera] : moved.Cameras()) {
+    if (!target->ExistsCamera(camera_id)) target->AddCamera(camera);
+  }
+  std::unordered_set<colmap::image_t> added;
+  for (const colmap::image_t image_id : moved.RegImageIds()) {
+    if (target->ExistsImage(image_id)) continue;
+    const colmap::Image& image = moved.Image(image_id);
+    colmap::Image copy;
+    copy.SetImageId(image_id);
+    copy.SetName(image.Name());
+    copy.SetCameraId(image.CameraId());
+    copy.CamFromWorld() = image.CamFromWorld();
+    std::vector<Eigen::Vector2d> xy;
+    xy.reserve(image.NumPoints2D());
+    for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
+    copy.SetPoints2D(xy);
+    target->AddImage(std::move(copy));
+    target->RegisterImage(image_id);
+    added.insert(image_id);
+  }
+  for (const auto& [point_id, point] : moved.Points3D()) {
+    colmap::Track track;
+    for (const colmap::TrackElement& el : point.track.Elements()) {
+      if (added.count(el.image_id)) track.AddElement(el);
+    }
+    if (track.Length() >= 2) target->AddPoint3D(point.xyz, track, point.color);
+  }
+}
+
+void RefineMergedModel(
+    const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
+    const colmap::IncrementalMapperOptions& mapper_options,
+    bool global_bundle_adjustment,
+    const std::shared_ptr<colmap::Reconstruction>& model) {
+  colmap::IncrementalMapper mapper(database_cache);
+  mapper.BeginReconstruction(model);
+  const auto triangulation = mapper_options.Triangulation();
+  mapper.CompleteAndMergeTracks(triangulation);
+  mapper.Retriangulate(triangulation);
+  if (global_bundle_adjustment) {
+    mapper.AdjustGlobalBundle(mapper_options.Mapper(),
+                              mapper_options.GlobalBundleAdjustment());
+  }
+  mapper.FilterPoints(mapper_options.Mapper());
+  mapper.EndReconstruction(/*discard=*/false);
+}
+
+}  // namespace tmr

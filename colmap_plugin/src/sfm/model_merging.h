@@ -1,0 +1,67 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <colmap/controllers/incremental_mapper.h>
+#include <colmap/geometry/sim3.h>
+#include <colmap/scene/correspondence_graph.h>
+#include <colmap/scene/database_cache.h>
+#include <colmap/scene/reconstruction.h>
+
+#include <memory>
+#include <string>
+
+namespace tmr {
+
+struct ModelAlignmentOptions {
+  // tau of the paper: the chosen image must share more tracks than this.
+  int min_shared_tracks = 12;
+  // RANSAC inlier threshold on 3D points, as a share of the median distance
+  // between the shared points and the target cameras that see them.
+  double max_relative_error = 0.05;
+  // At least this share of the shared tracks must fit the transform, both
+  // those of the anchor image (3D) and those of all images (reprojected
+  // into the target within max_reprojection_error_px).
+  double min_inlier_ratio = 0.5;
+  double max_reprojection_error_px = 8.0;
+  unsigned seed = 0;
+};
+
+struct ModelAlignment {
+  bool success = false;
+  colmap::Sim3d target_from_source;
+  colmap::image_t anchor_image = colmap::kInvalidImageId;  // source image used
+  int num_shared_tracks = 0;
+  int num_inliers = 0;
+  std::string reason;  // why the models stay apart
+};
+
+// The paper's merge rule (Sec. 5): find the image of the source model with
+// the most tracks reconstructed in the target (through the correspondence
+// graph); if it has more than tau such tracks, estimate the similarity
+// transform from the 3D-3D pairs of those tracks with Umeyama's method
+// inside COLMAP's LO-RANSAC; otherwise keep the models apart. The models may
+// share no image (image clusters are disjoint), which COLMAP's own
+// image-based alignment needs. The transform is then verified on the shared
+// tracks of all images by reprojection, as COLMAP verifies its alignments.
+ModelAlignment AlignModelsBySharedTracks(
+    const colmap::Reconstruction& target, const colmap::Reconstruction& source,
+    const colmap::CorrespondenceGraph& graph,
+    const ModelAlignmentOptions& options);
+
+// Adds the registered images of `source` that `target` does not hold,
+// transformed by target_from_source, with their 3D points (observations in
+// already held images are left to RefineMergedModel to re-link).
+void AppendReconstruction(const colmap::Reconstruction& source,
+                          const colmap::Sim3d& target_from_source,
+                          colmap::Reconstruction* target);
+
+// Re-links tracks across the merged parts (complete and merge tracks over
+// the full correspondence graph), then global bundle adjustment and point
+// filtering, as COLMAP's mapper does after registering images.
+void RefineMergedModel(
+    const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
+    const colmap::IncrementalMapperOptions& mapper_options,
+    bool global_bundle_adjustment,
+    const std::shared_ptr<colmap::Reconstruction>& model);
+
+}  // namespace tmr

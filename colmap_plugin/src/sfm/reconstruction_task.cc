@@ -1,0 +1,94 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "sfm/reconstruction_task.h"
+
+#include <colmap/scene/database.h>
+#include <colmap/scene/reconstruction_manager.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace tmr {
+
+bool WriteModelAtomically(const colmap::Reconstruction& model,
+                          const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string temporary = path + ".tmp";
+  std::error_code ec;
+  fs::remove_all(temporary, ec);
+  fs::create_directories(temporary, ec);
+  if (ec) return false;
+  try {
+    model.WriteBinary(temporary);
+  } catch (const std::exception&) {
+    return false;
+  }
+  fs::remove_all(path, ec);
+  fs::rename(temporary, path, ec);
+  return !ec;
+}
+
+ReconstructionTaskResult RunReconstructionTask(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    const std::string& task_database, const std::string& base_model,
+    const std::vector<std::pair<int, int>>& initial_pairs,
+    const std::string& output_model) {
+  const auto start = std::chrono::steady_clock::now();
+  ReconstructionTaskResult result;
+  {
+    colmap::Database database(task_database);
+    result.num_images = static_cast<int>(database.NumImages());
+  }
+  // With a base model only one attempt makes sense; without, each initial
+  // pair in turn and then COLMAP's own choice.
+  std::vector<std::pair<int, int>> attempts;
+  if (base_model.empty()) {
+    attempts.assign(
+        initial_pairs.begin(),
+        initial_pairs.begin() + std::min<size_t>(initial_pairs.size(), 2));
+  }
+  attempts.emplace_back(-1, -1);
+  // Keep the best model over the attempts; stop at one that registers
+  // most of the task's images.
+  std::shared_ptr<colmap::Reconstruction> best;
+  std::string how;
+  for (const auto& [image1, image2] : attempts) {
+    auto options =
+        std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
+    options->multiple_models = false;
+    options->extract_colors = false;
+    options->image_names.clear();
+    options->init_image_id1 = image1;
+    options->init_image_id2 = image2;
+    auto manager = std::make_shared<colmap::ReconstructionManager>();
+    if (!base_model.empty()) {
+      const size_t index = manager->Add();
+      manager->Get(index)->ReadBinary(base_model);
+    }
+    colmap::IncrementalMapperController controller(options, "", task_database,
+                                                   manager);
+    controller.Run();
+    for (size_t i = 0; i < manager->Size(); ++i) {
+      if (!best || manager->Get(i)->NumRegImages() > best->NumRegImages()) {
+        best = manager->Get(i);
+        how = image1 < 0   ? "automatic initial pair"
+              : image2 < 0 ? "initial image " + std::to_string(image1)
+                           : "initial pair " + std::to_string(image1) + "+" +
+                                 std::to_string(image2);
+      }
+    }
+    if (best && best->NumRegImages() >= 0.8 * result.num_images) break;
+  }
+  if (best && best->NumRegImages() >= 2) {
+    result.num_registered = static_cast<int>(best->NumRegImages());
+    result.success = WriteModelAtomically(*best, output_model);
+    result.message = result.success ? how : "cannot write " + output_model;
+  }
+  if (!result.success && result.message.empty())
+    result.message = "no initial pair worked";
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  return result;
+}
+
+}  // namespace tmr

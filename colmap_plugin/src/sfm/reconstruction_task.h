@@ -1,0 +1,42 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <colmap/controllers/incremental_mapper.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tmr {
+
+struct ReconstructionTaskResult {
+  bool success = false;
+  int num_images = 0;      // images of the task database
+  int num_registered = 0;  // registered in the output model
+  double seconds = 0.0;
+  std::string message;  // why it failed, or which initial pair worked
+};
+
+// One reconstruction task of the TMR-tree (paper Sec. 5): COLMAP's
+// IncrementalMapperController on the task's own database, producing one
+// model written to `output_model` (through a temporary folder, renamed when
+// complete).
+//
+// Kernel task: no base model; the first two initial pairs are tried in
+// order (the exemplar with COLMAP's choice of a second image, then with
+// ours; -1 lets COLMAP choose), then COLMAP's automatic choice; the best
+// model wins, and a model with 80% of the images ends the search.
+// Leaf task: `base_model` is the kernel's model; the mapper extends a copy
+// of it with the task's other images, keeping the base poses fixed when
+// mapper_options.fix_existing_images is set.
+ReconstructionTaskResult RunReconstructionTask(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    const std::string& task_database, const std::string& base_model,
+    const std::vector<std::pair<int, int>>& initial_pairs,
+    const std::string& output_model);
+
+// Writes a model through `path`.tmp and a rename; false on failure.
+bool WriteModelAtomically(const colmap::Reconstruction& model,
+                          const std::string& path);
+
+}  // namespace tmr

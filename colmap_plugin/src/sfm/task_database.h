@@ -1,0 +1,22 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tmr {
+
+// Writes a COLMAP database (schema of COLMAP 3.10, created by COLMAP's
+// Database class) that holds only the given images of `source_db`: their
+// cameras, images, keypoints and the two-view geometries among them. Image
+// and camera ids are kept, so models of a task database fit the source. The
+// source is attached read-only and never modified; the task database is
+// written under a temporary name and renamed when complete. A reconstruction
+// task then runs on its own small database: a self-contained unit of work
+// with its input on disk. Returns false with a reason in `error`.
+bool WriteTaskDatabase(const std::string& source_db,
+                       const std::vector<uint32_t>& image_ids,
+                       const std::string& task_db, std::string* error);
+
+}  // namespace tmr

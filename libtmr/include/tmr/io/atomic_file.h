@@ -1,0 +1,12 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <string>
+
+namespace tmr {
+
+// Writes a file through a temporary name and a rename, so that an
+// interrupted run never leaves a half-written file. False on failure.
+bool WriteFileAtomically(const std::string& path, const std::string& content);
+
+}  // namespace tmr
