@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
       "tau of the merge rule");
   add("Tmr.refine_merged_models", &o.refine_merged_models,
       "global bundle adjustment after merges");
+  add("Tmr.complete_models", &o.complete_models,
+      "finally register images no model holds");
   add("Tmr.keep_work", &o.keep_work,
       "keep task databases and models in OUT/.tmr_work");
   tmr::AddTmrTreeOptions(&desc, &o.tree);

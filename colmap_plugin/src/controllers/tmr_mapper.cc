@@ -4,6 +4,7 @@
 #include <colmap/estimators/alignment.h>
 #include <colmap/scene/database.h>
 #include <colmap/scene/database_cache.h>
+#include <colmap/scene/reconstruction_manager.h>
 #include <glog/logging.h>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <unordered_set>
 
 #include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
@@ -132,6 +134,7 @@ class TmrMapperRun {
         MergeClusters(cache);
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
         MergeScenes(cache, clusters);
+    if (o_.complete_models) CompleteScenes(&scenes);
     if (!WriteModels(scenes, error)) return false;
     report_->total_seconds = Since(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
@@ -261,13 +264,10 @@ class TmrMapperRun {
     });
   }
 
-  // One database cache of all clustered images, from a copy of the input
+  // One database cache of all images, from a copy of the input
   // (COLMAP's Database class writes to the file it opens).
   std::shared_ptr<colmap::DatabaseCache> LoadDatabaseCache(std::string* error) {
-    std::vector<uint32_t> ids;
-    for (const TmrKernelNode& node : tree_.kernels) {
-      for (const int v : node.cluster_images) ids.push_back(tree_.image_ids[v]);
-    }
+    const std::vector<uint32_t>& ids = tree_.image_ids;
     const std::string db = (work_ / "merge.db").string();
     if (!WriteTaskDatabase(o_.database_path, ids, db, error)) return nullptr;
     colmap::Database database(db);
@@ -378,6 +378,54 @@ class TmrMapperRun {
       if (scenes.size() <= 1) break;
     }
     return scenes;
+  }
+
+  // Registers the images that no model holds yet (kernel images the kernel
+  // task could not register, leaves of failed leaf tasks, unclustered
+  // images): COLMAP's mapper continues each scene model, largest first, over
+  // all images that no other model holds.
+  void CompleteScenes(
+      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) {
+    auto mapper = ColmapOptions(o_.mapper, threads_);
+    mapper.multiple_models = false;
+    mapper.extract_colors = false;
+    const int n = static_cast<int>(scenes->size());
+    for (int i = 0; i < n; ++i) {
+      const auto start = Clock::now();
+      auto& scene = (*scenes)[i];
+      const int before = static_cast<int>(scene->NumRegImages());
+      auto options = std::make_shared<colmap::IncrementalMapperOptions>(mapper);
+      std::unordered_set<std::string> held_elsewhere;
+      for (int j = 0; j < n; ++j) {
+        if (j == i) continue;
+        for (const colmap::image_t id : (*scenes)[j]->RegImageIds()) {
+          held_elsewhere.insert((*scenes)[j]->Image(id).Name());
+        }
+      }
+      for (const std::string& name : tree_.image_names) {
+        if (!held_elsewhere.count(name)) options->image_names.insert(name);
+      }
+      auto manager = std::make_shared<colmap::ReconstructionManager>();
+      *manager->Get(manager->Add()) = *scene;
+      colmap::IncrementalMapperController controller(
+          options, "", (work_ / "merge.db").string(), manager);
+      controller.Run();
+      if (manager->Size() > 0 &&
+          manager->Get(0)->NumRegImages() >= scene->NumRegImages()) {
+        scene = manager->Get(0);
+      }
+      TmrTaskReport task{
+          "complete model " + std::to_string(i),
+          before,
+          static_cast<int>(scene->NumRegImages()),
+          Since(start),
+          true,
+          std::to_string(scene->NumRegImages() - before) + " images added"};
+      Record(task, i + 1, n, start);
+    }
+    std::sort(scenes->begin(), scenes->end(), [](const auto& a, const auto& b) {
+      return a->NumRegImages() > b->NumRegImages();
+    });
   }
 
   bool WriteModels(

@@ -38,6 +38,9 @@ struct TmrMapperOptions {
   int merge_min_shared_tracks = 12;
   // Global bundle adjustment after each merge.
   bool refine_merged_models = true;
+  // Finally let COLMAP's mapper continue every model with the images no
+  // model holds yet.
+  bool complete_models = true;
   // Keep the task databases and models in output_path/.tmr_work.
   bool keep_work = false;
   MatchGraphOptions match_graph;
