@@ -5,6 +5,8 @@
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <sstream>
 
@@ -19,7 +21,9 @@ namespace fs = std::filesystem;
 class ModelEvaluationTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "tmr_model_evaluation_test";
+    // ctest runs the test cases as parallel processes: one folder each.
+    dir_ = fs::temp_directory_path() /
+           ("tmr_model_evaluation_test_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     SyntheticSceneOptions options;
     options.cameras_per_place = 30;

@@ -19,6 +19,8 @@ namespace po = boost::program_options;
 
 int main(int argc, char** argv) {
   tmr::TmrMapperOptions o;
+  // Kernels must seed stable models: m >= 30 even in small scenes.
+  o.tree.kernels.kernel_size_floor = 30;
   bool verbose = false;
   po::options_description desc(
       "tmr_mapper: COLMAP's incremental mapper on the TMR-tree");

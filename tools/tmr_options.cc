@@ -43,6 +43,7 @@ void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
       "layers k of the kernel search");
   add("Tmr.epsilon", &o->kernels.epsilon, "a = min(s) + epsilon");
   add("Tmr.min_kernel_size", &o->kernels.min_kernel_size, "smallest kernel");
+  add("Tmr.kernel_size_floor", &o->kernels.kernel_size_floor, "m is at least this");
   add("Tmr.beta1", &o->exemplar.beta1,
       "weight of the mean similarity in the exemplar score");
   add("Tmr.beta2", &o->exemplar.beta2,

@@ -45,6 +45,7 @@ json Parameters(const TmrTreeOptions& o) {
             {"num_layers", o.kernels.num_layers},
             {"epsilon", o.kernels.epsilon},
             {"min_kernel_size", o.kernels.min_kernel_size},
+            {"kernel_size_floor", o.kernels.kernel_size_floor},
             {"max_recursion_depth", o.kernels.max_recursion_depth}}},
           {"exemplar",
            {{"beta1", o.exemplar.beta1},
@@ -79,6 +80,7 @@ TmrTreeOptions ParametersFromJson(const json& p) {
     Get(k, "num_layers", &o.kernels.num_layers);
     Get(k, "epsilon", &o.kernels.epsilon);
     Get(k, "min_kernel_size", &o.kernels.min_kernel_size);
+    Get(k, "kernel_size_floor", &o.kernels.kernel_size_floor);
     Get(k, "max_recursion_depth", &o.kernels.max_recursion_depth);
   }
   if (p.contains("exemplar")) {

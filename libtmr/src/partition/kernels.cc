@@ -225,13 +225,16 @@ bool KernelOptions::Check(std::string* error) const {
     return fail("min_kernel_size must be in [2, max_kernel_size]");
   }
   if (max_recursion_depth < 0) return fail("max_recursion_depth must be >= 0");
+  if (kernel_size_floor < 2 || kernel_size_floor > max_kernel_size) {
+    return fail("kernel_size_floor must be in [2, max_kernel_size]");
+  }
   return true;
 }
 
 int KernelOptions::KernelSize(int num_images) const {
   const int m = static_cast<int>(std::lround(
       std::min<double>(max_kernel_size, kernel_fraction * num_images)));
-  return std::max(m, min_kernel_size);
+  return std::max({m, min_kernel_size, kernel_size_floor});
 }
 
 std::vector<Kernel> FindKernels(const ImageGraph& similarity,

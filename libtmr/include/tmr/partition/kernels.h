@@ -21,11 +21,15 @@ struct KernelOptions {
   // Kernels are never smaller than this (a connected part with fewer images
   // gets no kernel and stays unclustered).
   int min_kernel_size = 3;
+  // m is at least this. The paper has no floor (3 here); tmr_mapper uses 30
+  // so that every kernel can seed a stable model even in small scenes.
+  int kernel_size_floor = 3;
   // Recursion depth into oversized components before they are carved.
   int max_recursion_depth = 8;
 
   bool Check(std::string* error = nullptr) const;
-  // m for a scene of `num_images` images (at least min_kernel_size).
+  // m for a scene of `num_images` images: at least kernel_size_floor and
+  // min_kernel_size.
   int KernelSize(int num_images) const;
 };
 
