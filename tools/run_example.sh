@@ -2,7 +2,9 @@
 # The main job of README.md on a built-in example: builds tmr, generates a
 # synthetic scene as a COLMAP database in out/example/ (two dense places
 # joined by a corridor of photos, and a third place on its own), summarises
-# its match graph and builds its TMR-tree (tree.json and partition.png).
+# its match graph, reconstructs it with tmr_mapper (TMR-tree, kernel and leaf
+# tasks with COLMAP's mapper, merges) and scores the models against the
+# ground truth with tmr_eval.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/build.sh
@@ -12,5 +14,8 @@ echo "[example] writing a synthetic scene to $out/database.db"
 build/tools/tmr_synth --database_path "$out/database.db" --model_path "$out/gt" --seed 1
 echo "[example] match graph of $out/database.db"
 build/tools/tmr_graph_info --database_path "$out/database.db"
-echo "[example] TMR-tree of $out/database.db"
-build/tools/tmr_partition --database_path "$out/database.db" --output_path "$out/partition"
+echo "[example] tmr_mapper: reconstruction on the TMR-tree into $out/sparse"
+build/tools/tmr_mapper --database_path "$out/database.db" --output_path "$out/sparse"
+echo "[example] models scored against the ground truth"
+build/tools/tmr_eval --gt "$out/gt" --model "$out/sparse"
+echo "[example] partition picture: $out/sparse/partition.png, tree: $out/sparse/tree.json"
