@@ -162,11 +162,13 @@ class TmrMapperRun {
     const double elapsed = Since(stage_start);
     std::ostringstream line;
     line.precision(1);
-    line << std::fixed << task.name << " (" << done << "/" << total
-         << "): " << task.num_registered << "/" << task.num_images
+    line << std::fixed << task.name;
+    if (total > 1) line << " (" << done << "/" << total << ")";
+    line << ": " << task.num_registered << "/" << task.num_images
          << " images in " << task.seconds << " s"
-         << (task.success ? "" : " FAILED: " + task.message) << "; stage ETA "
-         << elapsed / done * (total - done) << " s";
+         << (task.success ? "" : ", " + task.message);
+    if (total > 1)
+      line << "; stage ETA " << elapsed / done * (total - done) << " s";
     progress_(line.str());
   }
 
@@ -345,16 +347,18 @@ class TmrMapperRun {
           const auto start = Clock::now();
           const ModelAlignment a = AlignModelsBySharedTracks(
               *scene, *model, *cache->CorrespondenceGraph(), align);
-          TmrTaskReport task{"merge scene",
-                             static_cast<int>(model->NumRegImages()),
-                             0,
-                             0.0,
-                             a.success,
-                             a.success
-                                 ? std::to_string(a.num_inliers) + " of " +
-                                       std::to_string(a.num_shared_tracks) +
-                                       " shared tracks fit"
-                                 : a.reason};
+          TmrTaskReport task{
+              "merge a model of " + std::to_string(model->NumRegImages()) +
+                  " images into a scene of " +
+                  std::to_string(scene->NumRegImages()),
+              static_cast<int>(model->NumRegImages()),
+              0,
+              0.0,
+              a.success,
+              a.success ? std::to_string(a.num_inliers) + " of " +
+                              std::to_string(a.num_shared_tracks) +
+                              " shared tracks fit"
+                        : a.reason};
           if (a.success) {
             AppendReconstruction(*model, a.target_from_source, scene.get());
             RefineMergedModel(cache, mapper, o_.refine_merged_models, scene);
