@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Mapper benchmark: stock `colmap mapper`, stock `colmap hierarchical_mapper`
+# and `tmr_mapper` on the same tmr_synth databases, in one run, with the same
+# thread count. Prints wall time, peak memory, registered images, models,
+# errors and wrong merges side by side (tmr_eval against the ground truth)
+# and appends them to out/bench_mapper/results.csv.
+#
+# Usage: tools/bench/bench_mapper.sh [SCENE ...]
+#   SCENE: city1 city2 city3 city4 city6 (well-connected, 192 / 552 / 1,088 /
+#          1,800 / 3,752 images) or places4 places8 places16 (weakly linked
+#          places, 120 images each). Default: city1 places4.
+# Environment: THREADS (default 2).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
+BIN=build/tools
+OUT=out/bench_mapper
+THREADS="${THREADS:-2}"
+[[ -x "$COLMAP" && -x "$BIN/tmr_mapper" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
+mkdir -p "$OUT"
+[[ -f "$OUT/results.csv" ]] ||
+  echo "scene,images,tool,wall_s,peak_mib,registered,largest,models,median_rot_deg,p90_rot_deg,wrong_merges" >"$OUT/results.csv"
+
+synth_args() {
+  case "$1" in
+    city*) local n=${1#city}; echo "--family city --city_blocks_x $n --city_blocks_y $n" ;;
+    places*) local n=${1#places}
+      echo "--family places --num_places $n --num_unlinked_places 0 --link_spacing 9" ;;
+    *) echo "unknown scene $1" >&2; exit 2 ;;
+  esac
+}
+
+# Runs a command under /usr/bin/time; prints "wall_s peak_mib".
+timed() {
+  local log=$1; shift
+  /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || true
+  awk '{printf "%s %.0f", $1, $2 / 1024}' "$log.time"
+}
+
+score() {  # NAME SCENE IMAGES TOOL WALL PEAK MODEL_DIR
+  local json="$7/eval.json"
+  if ! "$BIN/tmr_eval" --gt "$OUT/$2/gt" --model "$7" --output_json "$json" >/dev/null 2>&1; then
+    echo "$2,$3,$4,$5,$6,0,0,0,,,0" >>"$OUT/results.csv"
+    printf "%-10s %-22s %8s s %7s MiB   no model\n" "$2" "$4" "$5" "$6"
+    return
+  fi
+  python3 - "$json" "$2" "$3" "$4" "$5" "$6" "$OUT/results.csv" <<'PY'
+import json, sys
+models = json.load(open(sys.argv[1]))["models"]
+scene, images, tool, wall, peak, csv = sys.argv[2:8]
+registered = sum(m["registered_images"] for m in models)
+largest = max((m["registered_images"] for m in models), default=0)
+big = max(models, key=lambda m: m["registered_images"])
+wrong = sum(1 for m in models if m["wrong_merge"])
+rot, p90 = big["rotation_error_deg"]["median"], big["rotation_error_deg"]["p90"]
+open(csv, "a").write(f"{scene},{images},{tool},{wall},{peak},{registered},{largest},{len(models)},{rot:.3f},{p90:.3f},{wrong}\n")
+print(f"{scene:<10} {tool:<22} {wall:>8} s {peak:>7} MiB  {registered:>5} registered, largest {largest:>5}, "
+      f"{len(models):>3} models, median rot {rot:.3f}°, wrong merges {wrong}")
+PY
+}
+
+scenes=("$@")
+[[ ${#scenes[@]} -gt 0 ]] || scenes=(city1 places4)
+for scene in "${scenes[@]}"; do
+  dir="$OUT/$scene"
+  if [[ ! -f "$dir/database.db" ]]; then
+    rm -rf "$dir" && mkdir -p "$dir/images"
+    # shellcheck disable=SC2046
+    "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "$scene")
+  fi
+  images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
+  for tool in colmap_mapper colmap_hierarchical tmr_mapper; do
+    out="$dir/$tool"
+    rm -rf "$out" && mkdir -p "$out"
+    case $tool in
+      colmap_mapper)
+        read -r wall peak < <(timed "$out.log" "$COLMAP" mapper --database_path "$dir/database.db" \
+          --image_path "$dir/images" --output_path "$out" --Mapper.num_threads "$THREADS") ;;
+      colmap_hierarchical)
+        read -r wall peak < <(timed "$out.log" "$COLMAP" hierarchical_mapper \
+          --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
+          --Mapper.num_threads "$THREADS") ;;
+      tmr_mapper)
+        read -r wall peak < <(timed "$out.log" "$BIN/tmr_mapper" --database_path "$dir/database.db" \
+          --output_path "$out" --Mapper.num_threads "$THREADS") ;;
+    esac
+    score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
+  done
+done
