@@ -15,6 +15,7 @@
 #include <thread>
 #include <unordered_set>
 
+#include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
 #include "sfm/task_database.h"
@@ -30,65 +31,11 @@ double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-colmap::IncrementalMapperOptions ColmapOptions(
-    const MapperPassThroughOptions& m, int num_threads) {
-  colmap::IncrementalMapperOptions o;
-  o.min_num_matches = m.min_num_matches;
-  o.ignore_watermarks = m.ignore_watermarks;
-  o.mapper.init_min_num_inliers = m.init_min_num_inliers;
-  o.mapper.abs_pose_min_num_inliers = m.abs_pose_min_num_inliers;
-  o.mapper.filter_max_reproj_error = m.filter_max_reproj_error;
-  o.triangulation.min_angle = m.tri_min_angle;
-  o.ba_refine_focal_length = m.ba_refine_focal_length;
-  o.ba_refine_principal_point = m.ba_refine_principal_point;
-  o.ba_refine_extra_params = m.ba_refine_extra_params;
-  o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
-  o.num_threads = num_threads;
-  return o;
-}
-
-// Runs jobs on `workers` threads; job i gets index i.
-void RunParallel(int num_jobs, int workers,
-                 const std::function<void(int)>& job) {
-  std::atomic<int> next{0};
-  std::vector<std::thread> threads;
-  for (int w = 0; w < std::max(1, std::min(workers, num_jobs)); ++w) {
-    threads.emplace_back([&] {
-      for (int i = next++; i < num_jobs; i = next++) job(i);
-    });
-  }
-  for (std::thread& t : threads) t.join();
-}
-
 std::vector<uint32_t> Ids(const TmrTree& tree,
                           const std::vector<int>& vertices) {
   std::vector<uint32_t> ids;
   for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
   return ids;
-}
-
-std::string ReportJson(const TmrMapperReport& r) {
-  std::ostringstream out;
-  out << "{\"num_images\": " << r.num_images
-      << ", \"partition_s\": " << r.partition_seconds
-      << ", \"total_s\": " << r.total_seconds << ", \"model_sizes\": [";
-  for (size_t i = 0; i < r.model_sizes.size(); ++i)
-    out << (i ? ", " : "") << r.model_sizes[i];
-  out << "], \"tasks\": [";
-  for (size_t i = 0; i < r.tasks.size(); ++i) {
-    const TmrTaskReport& t = r.tasks[i];
-    out << (i ? ",\n  " : "\n  ") << "{\"task\": \"" << t.name
-        << "\", \"images\": " << t.num_images
-        << ", \"registered\": " << t.num_registered
-        << ", \"seconds\": " << t.seconds
-        << ", \"success\": " << (t.success ? "true" : "false")
-        << ", \"message\": \"";
-    for (const char c : t.message)
-      out << (c == '"' || c == '\\' ? "\\" : "") << c;
-    out << "\"}";
-  }
-  out << "\n]}\n";
-  return out.str();
 }
 
 class TmrMapperRun {
@@ -465,22 +412,6 @@ class TmrMapperRun {
 
 }  // namespace
 
-bool TmrMapperOptions::Check(std::string* error) const {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (database_path.empty()) return fail("database_path is empty");
-  if (output_path.empty()) return fail("output_path is empty");
-  if (num_threads == 0 || num_threads < -1)
-    return fail("num_threads must be -1 or >= 1");
-  if (merge_min_shared_tracks < 3)
-    return fail("merge_min_shared_tracks must be >= 3");
-  if (mapper.min_num_matches < 1)
-    return fail("Mapper.min_num_matches must be >= 1");
-  return match_graph.Check(error) && tree.Check(error);
-}
-
 bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
                   std::string* error,
                   const std::function<void(const std::string&)>& progress) {
@@ -501,16 +432,6 @@ bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
   *report = TmrMapperReport();
   TmrMapperRun run(effective, report, progress);
   return run.Run(error);
-}
-
-}  // namespace tmr
-
-namespace tmr {
-
-void ConfigureColmapLogging(const char* program, bool verbose) {
-  FLAGS_logtostderr = true;
-  FLAGS_minloglevel = verbose ? google::GLOG_INFO : google::GLOG_WARNING;
-  if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(program);
 }
 
 }  // namespace tmr
