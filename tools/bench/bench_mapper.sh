@@ -9,7 +9,8 @@
 #   SCENE: city1 city2 city3 city4 city6 (well-connected, 192 / 552 / 1,088 /
 #          1,800 / 3,752 images) or places4 places8 places16 (weakly linked
 #          places, 120 images each). Default: city1 places4.
-# Environment: THREADS (default 2).
+# Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
+# of repeating them.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
@@ -34,7 +35,7 @@ synth_args() {
 timed() {
   local log=$1; shift
   /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || true
-  awk '{printf "%s %.0f", $1, $2 / 1024}' "$log.time"
+  awk '{printf "%s %.0f\n", $1, $2 / 1024}' "$log.time"
 }
 
 score() {  # NAME SCENE IMAGES TOOL WALL PEAK MODEL_DIR
@@ -71,6 +72,11 @@ for scene in "${scenes[@]}"; do
   images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
   for tool in colmap_mapper colmap_hierarchical tmr_mapper; do
     out="$dir/$tool"
+    if [[ -n "${REUSE:-}" && -f "$out.log.time" ]]; then  # REUSE=1: keep earlier runs
+      read -r wall peak < <(awk '{printf "%s %.0f\n", $1, $2 / 1024}' "$out.log.time")
+      score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
+      continue
+    fi
     rm -rf "$out" && mkdir -p "$out"
     case $tool in
       colmap_mapper)
