@@ -21,7 +21,11 @@ std::string UriForReadOnly(const std::string& path) {
       uri += c;
     }
   }
-  return uri + "?mode=ro";
+  // As in libtmr's reader: a cleanly closed WAL database (no -wal file) is
+  // read as immutable, so that SQLite creates no -wal/-shm files beside it.
+  std::error_code ec;
+  const bool has_wal = std::filesystem::exists(path + "-wal", ec);
+  return uri + (has_wal ? "?mode=ro" : "?mode=ro&immutable=1");
 }
 
 }  // namespace
