@@ -43,6 +43,7 @@ struct TmrMapperOptions {
   bool complete_models = true;
   // Keep the task databases and models in output_path/.tmr_work.
   bool keep_work = false;
+  // Its min_num_matches is taken from mapper.min_num_matches.
   MatchGraphOptions match_graph;
   TmrTreeOptions tree;
   MapperPassThroughOptions mapper;
@@ -73,8 +74,9 @@ struct TmrMapperReport {
 // each extending a copy of its kernel's model; leaf models are merged into
 // image-cluster models, and those into scene models when the merge rule
 // finds a reliable similarity; the rest stay separate models. Writes
-// output_path/0, 1, ... (largest first, COLMAP binary), tree.json,
-// partition.png and report.json; every model appears only when complete.
+// output_path/0, 1, ... (largest first, COLMAP binary), tree.json and
+// report.json (the tool adds partition.png and project.ini); every model
+// appears only when complete.
 // `progress` receives one line per finished step. Returns false with a
 // reason in `error`.
 bool RunTmrMapper(
