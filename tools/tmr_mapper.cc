@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
   bool verbose = false;
   po::options_description desc(
       "tmr_mapper: COLMAP's incremental mapper on the TMR-tree");
-  auto add = [&](const char* name, auto* value, const char* help) {
-    desc.add_options()(name, po::value(value)->default_value(*value), help);
+  auto add = [&desc](const char* name, auto* value, const char* help) {
+    tmr::AddOption(&desc, name, value, help);
   };
   desc.add_options()("help,h", "print this help")(
       "database_path", po::value(&o.database_path)->required(),

@@ -30,8 +30,8 @@ std::optional<int> ParseCommandLine(const std::string& tool, int argc,
 }
 
 void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
-  auto add = [&](const char* name, auto* value, const char* help) {
-    desc->add_options()(name, po::value(value)->default_value(*value), help);
+  auto add = [desc](const char* name, auto* value, const char* help) {
+    AddOption(desc, name, value, help);
   };
   add("Tmr.seed", &o->seed, "seed of every random choice");
   add("Tmr.max_kernel_size", &o->kernels.max_kernel_size,
@@ -43,7 +43,8 @@ void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
       "layers k of the kernel search");
   add("Tmr.epsilon", &o->kernels.epsilon, "a = min(s) + epsilon");
   add("Tmr.min_kernel_size", &o->kernels.min_kernel_size, "smallest kernel");
-  add("Tmr.kernel_size_floor", &o->kernels.kernel_size_floor, "m is at least this");
+  add("Tmr.kernel_size_floor", &o->kernels.kernel_size_floor,
+      "m is at least this");
   add("Tmr.beta1", &o->exemplar.beta1,
       "weight of the mean similarity in the exemplar score");
   add("Tmr.beta2", &o->exemplar.beta2,

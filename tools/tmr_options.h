@@ -20,6 +20,14 @@ std::optional<int> ParseCommandLine(
     const boost::program_options::options_description& desc,
     boost::program_options::variables_map* vm);
 
+// Registers --NAME with the current value of *value as its default.
+template <typename T>
+void AddOption(boost::program_options::options_description* desc,
+               const char* name, T* value, const char* help) {
+  desc->add_options()(
+      name, boost::program_options::value(value)->default_value(*value), help);
+}
+
 // Registers --Tmr.<name> for every field of TmrTreeOptions, with defaults.
 void AddTmrTreeOptions(boost::program_options::options_description* desc,
                        TmrTreeOptions* options);

@@ -13,16 +13,6 @@
 
 namespace po = boost::program_options;
 
-namespace {
-
-template <typename T>
-void Add(po::options_description* desc, const char* name, T* value,
-         const char* help) {
-  desc->add_options()(name, po::value(value)->default_value(*value), help);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   std::string database_path, model_path;
   tmr::SyntheticSceneOptions o;
@@ -33,48 +23,58 @@ int main(int argc, char** argv) {
       "database to write (must not exist)")(
       "model_path", po::value(&model_path),
       "folder for the ground-truth model (COLMAP binary)");
-  Add(&desc, "family", &o.family, "places, street or city");
-  Add(&desc, "seed", &o.seed, "random seed");
-  Add(&desc, "num_places", &o.num_places, "places: linked dense places");
-  Add(&desc, "cameras_per_place", &o.cameras_per_place, "places: ring cameras");
-  Add(&desc, "num_unlinked_places", &o.num_unlinked_places,
-      "places: places without link");
-  Add(&desc, "link_spacing", &o.link_spacing,
-      "places: metres between link cameras (0: no link)");
-  Add(&desc, "place_distance", &o.place_distance,
-      "places: metres between places");
-  Add(&desc, "street_length", &o.street_length, "street: length in metres");
-  Add(&desc, "street_gap", &o.street_gap, "street: none, removed or thinned");
-  Add(&desc, "gap_begin", &o.gap_begin,
-      "street: gap start (fraction of length)");
-  Add(&desc, "gap_end", &o.gap_end, "street: gap end (fraction of length)");
-  Add(&desc, "gap_thinning", &o.gap_thinning,
-      "street: camera spacing factor in a thinned gap");
-  Add(&desc, "city_blocks_x", &o.city_blocks_x, "city: blocks along x");
-  Add(&desc, "city_blocks_y", &o.city_blocks_y, "city: blocks along y");
-  Add(&desc, "camera_spacing", &o.camera_spacing,
-      "metres between cameras on streets");
-  Add(&desc, "min_focal_px", &o.min_focal_px, "smallest true focal length");
-  Add(&desc, "max_focal_px", &o.max_focal_px, "largest true focal length");
-  Add(&desc, "focal_prior_error", &o.focal_prior_error,
-      "relative error of the prior focal");
-  Add(&desc, "point_density", &o.point_density,
-      "3D points per square metre of facade");
-  Add(&desc, "max_range", &o.max_range, "metres a point can be seen from");
-  Add(&desc, "detection_probability", &o.detection_probability,
-      "chance a visible point is detected");
-  Add(&desc, "keypoint_noise_px", &o.keypoint_noise_px,
-      "keypoint noise (pixels)");
-  Add(&desc, "unmatched_keypoint_ratio", &o.unmatched_keypoint_ratio,
-      "extra keypoints per detection");
-  Add(&desc, "match_probability", &o.match_probability,
-      "chance two detections match");
-  Add(&desc, "max_pairs_per_image", &o.max_pairs_per_image,
-      "retrieval: partners per image (0: all)");
-  Add(&desc, "outlier_match_ratio", &o.outlier_match_ratio,
-      "raw-match outliers per inlier");
-  Add(&desc, "false_pairs_per_100_images", &o.false_pairs_per_100_images,
-      "false verified pairs");
+  tmr::AddOption(&desc, "family", &o.family, "places, street or city");
+  tmr::AddOption(&desc, "seed", &o.seed, "random seed");
+  tmr::AddOption(&desc, "num_places", &o.num_places,
+                 "places: linked dense places");
+  tmr::AddOption(&desc, "cameras_per_place", &o.cameras_per_place,
+                 "places: ring cameras");
+  tmr::AddOption(&desc, "num_unlinked_places", &o.num_unlinked_places,
+                 "places: places without link");
+  tmr::AddOption(&desc, "link_spacing", &o.link_spacing,
+                 "places: metres between link cameras (0: no link)");
+  tmr::AddOption(&desc, "place_distance", &o.place_distance,
+                 "places: metres between places");
+  tmr::AddOption(&desc, "street_length", &o.street_length,
+                 "street: length in metres");
+  tmr::AddOption(&desc, "street_gap", &o.street_gap,
+                 "street: none, removed or thinned");
+  tmr::AddOption(&desc, "gap_begin", &o.gap_begin,
+                 "street: gap start (fraction of length)");
+  tmr::AddOption(&desc, "gap_end", &o.gap_end,
+                 "street: gap end (fraction of length)");
+  tmr::AddOption(&desc, "gap_thinning", &o.gap_thinning,
+                 "street: camera spacing factor in a thinned gap");
+  tmr::AddOption(&desc, "city_blocks_x", &o.city_blocks_x,
+                 "city: blocks along x");
+  tmr::AddOption(&desc, "city_blocks_y", &o.city_blocks_y,
+                 "city: blocks along y");
+  tmr::AddOption(&desc, "camera_spacing", &o.camera_spacing,
+                 "metres between cameras on streets");
+  tmr::AddOption(&desc, "min_focal_px", &o.min_focal_px,
+                 "smallest true focal length");
+  tmr::AddOption(&desc, "max_focal_px", &o.max_focal_px,
+                 "largest true focal length");
+  tmr::AddOption(&desc, "focal_prior_error", &o.focal_prior_error,
+                 "relative error of the prior focal");
+  tmr::AddOption(&desc, "point_density", &o.point_density,
+                 "3D points per square metre of facade");
+  tmr::AddOption(&desc, "max_range", &o.max_range,
+                 "metres a point can be seen from");
+  tmr::AddOption(&desc, "detection_probability", &o.detection_probability,
+                 "chance a visible point is detected");
+  tmr::AddOption(&desc, "keypoint_noise_px", &o.keypoint_noise_px,
+                 "keypoint noise (pixels)");
+  tmr::AddOption(&desc, "unmatched_keypoint_ratio", &o.unmatched_keypoint_ratio,
+                 "extra keypoints per detection");
+  tmr::AddOption(&desc, "match_probability", &o.match_probability,
+                 "chance two detections match");
+  tmr::AddOption(&desc, "max_pairs_per_image", &o.max_pairs_per_image,
+                 "retrieval: partners per image (0: all)");
+  tmr::AddOption(&desc, "outlier_match_ratio", &o.outlier_match_ratio,
+                 "raw-match outliers per inlier");
+  tmr::AddOption(&desc, "false_pairs_per_100_images",
+                 &o.false_pairs_per_100_images, "false verified pairs");
   po::variables_map vm;
   if (const auto exit_code =
           tmr::ParseCommandLine("tmr_synth", argc, argv, desc, &vm)) {

@@ -31,6 +31,13 @@ double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// Orders models by registered images, largest first.
+void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
+  std::sort(models->begin(), models->end(), [](const auto& a, const auto& b) {
+    return a->NumRegImages() > b->NumRegImages();
+  });
+}
+
 std::vector<uint32_t> Ids(const TmrTree& tree,
                           const std::vector<int>& vertices) {
   std::vector<uint32_t> ids;
@@ -273,15 +280,11 @@ class TmrMapperRun {
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
       const std::shared_ptr<colmap::DatabaseCache>& cache,
       std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) {
-    std::sort(clusters.begin(), clusters.end(),
-              [](const auto& a, const auto& b) {
-                return a->NumRegImages() > b->NumRegImages();
-              });
+    SortBySize(&clusters);
     const auto mapper = ColmapOptions(o_.mapper, threads_);
     ModelAlignmentOptions align;
     align.min_shared_tracks = o_.merge_min_shared_tracks;
     align.seed = static_cast<unsigned>(o_.tree.seed);
-    std::vector<std::shared_ptr<colmap::Reconstruction>> scenes;
     // Each cluster model joins the first (largest) scene it aligns with;
     // repeat until nothing merges, since a merge can create new overlaps.
     bool merged = true;
@@ -321,14 +324,9 @@ class TmrMapperRun {
         if (!joined) next.push_back(model);
       }
       clusters = std::move(next);
-      std::sort(clusters.begin(), clusters.end(),
-                [](const auto& a, const auto& b) {
-                  return a->NumRegImages() > b->NumRegImages();
-                });
-      scenes = clusters;
-      if (scenes.size() <= 1) break;
+      SortBySize(&clusters);
     }
-    return scenes;
+    return clusters;
   }
 
   // Registers the images that no model holds yet (kernel images the kernel
@@ -374,9 +372,7 @@ class TmrMapperRun {
           std::to_string(scene->NumRegImages() - before) + " images added"};
       Record(task, i + 1, n, start);
     }
-    std::sort(scenes->begin(), scenes->end(), [](const auto& a, const auto& b) {
-      return a->NumRegImages() > b->NumRegImages();
-    });
+    SortBySize(scenes);
   }
 
   bool WriteModels(

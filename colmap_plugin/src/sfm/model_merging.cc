@@ -30,10 +30,11 @@ std::vector<SharedTrack> SharedTracks(const colmap::Reconstruction& target,
                                       const colmap::CorrespondenceGraph& graph,
                                       colmap::image_t source_image) {
   std::vector<SharedTrack> shared;
+  if (!graph.ExistsImage(source_image)) return shared;
   const colmap::Image& image = source.Image(source_image);
   for (colmap::point2D_t idx = 0; idx < image.NumPoints2D(); ++idx) {
     const colmap::Point2D& point2D = image.Point2D(idx);
-    if (!point2D.HasPoint3D() || !graph.ExistsImage(source_image)) continue;
+    if (!point2D.HasPoint3D()) continue;
     const auto range = graph.FindCorrespondences(source_image, idx);
     for (auto it = range.beg; it != range.end; ++it) {
       if (!target.ExistsImage(it->image_id) ||

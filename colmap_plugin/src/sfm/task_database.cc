@@ -1,6 +1,8 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/task_database.h"
 
+#include "tmr/io/database_reader.h"
+
 #include <colmap/scene/database.h>
 #include <sqlite3.h>
 
@@ -8,28 +10,6 @@
 #include <sstream>
 
 namespace tmr {
-namespace {
-
-std::string UriForReadOnly(const std::string& path) {
-  std::string uri = "file:";
-  for (const char c : path) {
-    if (c == '%' || c == '?' || c == '#' || c == '\'') {
-      char hex[4];
-      std::snprintf(hex, sizeof(hex), "%%%02X", static_cast<unsigned char>(c));
-      uri += hex;
-    } else {
-      uri += c;
-    }
-  }
-  // As in libtmr's reader: a cleanly closed WAL database (no -wal file) is
-  // read as immutable, so that SQLite creates no -wal/-shm files beside it.
-  std::error_code ec;
-  const bool has_wal = std::filesystem::exists(path + "-wal", ec);
-  return uri + (has_wal ? "?mode=ro" : "?mode=ro&immutable=1");
-}
-
-}  // namespace
-
 bool WriteTaskDatabase(const std::string& source_db,
                        const std::vector<uint32_t>& image_ids,
                        const std::string& task_db, std::string* error) {
@@ -54,7 +34,7 @@ bool WriteTaskDatabase(const std::string& source_db,
     ids << (i ? "," : "") << image_ids[i];
   const std::string set = "(" + ids.str() + ")";
   const std::string sql =
-      "ATTACH DATABASE '" + UriForReadOnly(source_db) +
+      "ATTACH DATABASE '" + ReadOnlySqliteUri(source_db) +
       "' AS src;"
       "BEGIN;"
       "CREATE TEMP TABLE chosen(image_id INTEGER PRIMARY KEY);"

@@ -8,42 +8,15 @@
 
 namespace tmr {
 namespace internal {
-namespace {
-
-// Percent-encodes a file path for an SQLite "file:" URI.
-std::string PathToUri(const std::string& path, bool immutable) {
-  std::string uri = "file:";
-  for (const char c : path) {
-    if (c == '%' || c == '?' || c == '#' ||
-        static_cast<unsigned char>(c) < 32) {
-      static const char kHex[] = "0123456789ABCDEF";
-      uri += '%';
-      uri += kHex[(static_cast<unsigned char>(c) >> 4) & 0xF];
-      uri += kHex[static_cast<unsigned char>(c) & 0xF];
-    } else {
-      uri += c;
-    }
-  }
-  uri += immutable ? "?mode=ro&immutable=1" : "?mode=ro";
-  return uri;
-}
-
-}  // namespace
 
 ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) Fail("no such file");
   if (std::filesystem::is_directory(status)) Fail("is a directory, not a file");
-  // COLMAP keeps its databases in WAL journal mode. A read-only connection
-  // to a WAL database creates -wal and -shm files beside it that it cannot
-  // remove, so a cleanly closed database (no -wal file) is opened as an
-  // immutable file, which touches nothing. A database with a -wal file is
-  // still open in COLMAP or was not closed cleanly: read it through the WAL,
-  // and as immutable if that is impossible (read-only folder).
-  const bool has_wal = std::filesystem::exists(path + "-wal", ec);
-  Open(/*immutable=*/!has_wal);
-  if (!has_wal) return;
+  Open(ReadOnlySqliteUri(path));
+  // A database with a -wal file on a read-only folder cannot be read
+  // through the WAL; it can as an immutable file.
   try {
     HasTable("images");
   } catch (const DatabaseError&) {
@@ -51,16 +24,15 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
     if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
     sqlite3_close(db_);
     db_ = nullptr;
-    Open(/*immutable=*/true);
+    Open(ReadOnlySqliteUri(path, /*force_immutable=*/true));
   }
 }
 
 ReadOnlySqlite::~ReadOnlySqlite() { sqlite3_close(db_); }
 
-void ReadOnlySqlite::Open(bool immutable) {
-  const int rc =
-      sqlite3_open_v2(PathToUri(path_, immutable).c_str(), &db_,
-                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
+void ReadOnlySqlite::Open(const std::string& uri) {
+  const int rc = sqlite3_open_v2(
+      uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
   if (rc != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close(db_);
@@ -136,4 +108,24 @@ bool Statement::IsNull(int column) const {
 }
 
 }  // namespace internal
+
+std::string ReadOnlySqliteUri(const std::string& path, bool force_immutable) {
+  std::string uri = "file:";
+  for (const char c : path) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '%' || c == '?' || c == '#' || c == '\'' || byte < 32) {
+      static const char kHex[] = "0123456789ABCDEF";
+      uri += '%';
+      uri += kHex[byte >> 4];
+      uri += kHex[byte & 0xF];
+    } else {
+      uri += c;
+    }
+  }
+  std::error_code ec;
+  const bool through_wal =
+      !force_immutable && std::filesystem::exists(path + "-wal", ec);
+  return uri + (through_wal ? "?mode=ro" : "?mode=ro&immutable=1");
+}
+
 }  // namespace tmr

@@ -27,7 +27,7 @@ class ReadOnlySqlite {
   bool HasColumn(const std::string& table, const std::string& column) const;
 
  private:
-  void Open(bool immutable);
+  void Open(const std::string& uri);
   std::string path_;
   sqlite3* db_ = nullptr;
 };
