@@ -59,6 +59,8 @@ int main(int argc, char** argv) {
                  "relative error of the prior focal");
   tmr::AddOption(&desc, "point_density", &o.point_density,
                  "3D points per square metre of facade");
+  tmr::AddOption(&desc, "facade_relief", &o.facade_relief,
+                 "metres points stand off their facade plane (+-)");
   tmr::AddOption(&desc, "max_range", &o.max_range,
                  "metres a point can be seen from");
   tmr::AddOption(&desc, "detection_probability", &o.detection_probability,

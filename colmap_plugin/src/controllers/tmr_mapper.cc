@@ -15,6 +15,7 @@
 #include <thread>
 #include <unordered_set>
 
+#include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
@@ -80,14 +81,9 @@ class TmrMapperRun {
     if (tree_.kernels.empty())
       return Fail("the partition found no kernel", error);
 
-    RunKernels();
-    RunLeaves();
-    const auto cache = LoadDatabaseCache(error);
-    if (!cache) return false;
-    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters =
-        MergeClusters(cache);
+    if (!RunTaskGraph(error)) return false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
-        MergeScenes(cache, clusters);
+        MergeScenes(cache_, clusters_);
     if (o_.complete_models) CompleteScenes(&scenes);
     if (!WriteModels(scenes, error)) return false;
     report_->total_seconds = Since(start);
@@ -108,21 +104,23 @@ class TmrMapperRun {
     if (progress_) progress_(line);
   }
 
-  void Record(const TmrTaskReport& task, int done, int total,
-              Clock::time_point stage_start) {
+  // Reports a finished task; `weight` (images) drives the ETA of the task
+  // graph, 0 for steps outside it.
+  void Record(const TmrTaskReport& task, double weight = 0.0) {
     std::lock_guard<std::mutex> lock(mutex_);
     report_->tasks.push_back(task);
+    done_weight_ += weight;
     if (!progress_) return;
-    const double elapsed = Since(stage_start);
     std::ostringstream line;
     line.precision(1);
-    line << std::fixed << task.name;
-    if (total > 1) line << " (" << done << "/" << total << ")";
-    line << ": " << task.num_registered << "/" << task.num_images
-         << " images in " << task.seconds << " s"
+    line << std::fixed << task.name << ": " << task.num_registered << "/"
+         << task.num_images << " images in " << task.seconds << " s"
          << (task.success ? "" : ", " + task.message);
-    if (total > 1)
-      line << "; stage ETA " << elapsed / done * (total - done) << " s";
+    if (weight > 0 && done_weight_ < total_weight_) {
+      const double elapsed = Since(graph_start_);
+      line << "; ETA "
+           << elapsed / done_weight_ * (total_weight_ - done_weight_) << " s";
+    }
     progress_(line.str());
   }
 
@@ -134,90 +132,111 @@ class TmrMapperRun {
         .string();
   }
 
-  int TaskThreads(int num_tasks) const {
-    return std::max(1, threads_ / std::max(1, std::min(threads_, num_tasks)));
-  }
-
-  void RunKernels() {
-    const int n = static_cast<int>(tree_.kernels.size());
-    const auto start = Clock::now();
-    std::atomic<int> done{0};
-    kernel_ok_.assign(n, false);
-    base_registered_.assign(n, 0);
-    const auto mapper = ColmapOptions(o_.mapper, TaskThreads(n));
-    RunParallel(n, threads_, [&](int k) {
+  // Kernel, leaf and cluster-merge tasks as one graph: a leaf task waits
+  // only for its kernel, a cluster merge only for its own leaves.
+  bool RunTaskGraph(std::string* error) {
+    const int num_kernels = static_cast<int>(tree_.kernels.size());
+    kernel_ok_.assign(num_kernels, false);
+    base_registered_.assign(num_kernels, 0);
+    clusters_.assign(num_kernels, nullptr);
+    TaskGraph graph;
+    std::string cache_error;
+    const int cache = graph.Add({"load correspondences", 1e12, {}, [&](int) {
+                                   cache_ = LoadDatabaseCache(&cache_error);
+                                 }});
+    total_weight_ = done_weight_ = 0.0;
+    for (int k = 0; k < num_kernels; ++k) {
       const TmrKernelNode& node = tree_.kernels[k];
-      TmrTaskReport task;
-      task.name = "kernel " + std::to_string(k);
-      task.num_images = static_cast<int>(node.kernel_images.size());
-      const std::string db = KernelModel(k) + ".db";
-      std::string error;
-      if (!WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images),
-                             db, &error)) {
-        task.message = error;
-      } else {
-        // The exemplar first with COLMAP's choice of a second image (most
-        // matches, wide enough baseline), then with ours.
-        std::vector<std::pair<int, int>> pairs = {
-            {tree_.image_ids[node.exemplar], -1}};
-        for (const int second : node.second_images) {
-          pairs.emplace_back(tree_.image_ids[node.exemplar],
-                             tree_.image_ids[second]);
-        }
-        const auto result =
-            RunReconstructionTask(mapper, db, "", pairs, KernelModel(k));
-        task.num_registered = result.num_registered;
-        task.seconds = result.seconds;
-        task.success = result.success;
-        task.message = result.message;
-        kernel_ok_[k] = result.success;
-        base_registered_[k] = result.num_registered;
+      const double kernel_size = node.kernel_images.size();
+      const int kernel = graph.Add(
+          {"kernel", kernel_size, {}, [this, k](int t) { RunKernel(k, t); }});
+      std::vector<int> merge_depends = {cache, kernel};
+      total_weight_ += kernel_size;
+      for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
+        const double leaf_size = node.leaf_clusters[l].size();
+        merge_depends.push_back(graph.Add(
+            {"leaf", kernel_size + leaf_size, {kernel}, [this, k, l](int t) {
+               RunLeaf(k, l, t);
+             }}));
+        total_weight_ += leaf_size;
       }
-      Record(task, ++done, n, start);
-    });
-  }
-
-  void RunLeaves() {
-    std::vector<std::pair<int, int>> jobs;
-    for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
-      if (!kernel_ok_[k]) continue;
-      for (int l = 0;
-           l < static_cast<int>(tree_.kernels[k].leaf_clusters.size()); ++l) {
-        jobs.emplace_back(k, l);
-      }
+      graph.Add({"merge", static_cast<double>(node.cluster_images.size()),
+                 merge_depends, [this, k](int t) { MergeCluster(k, t); }});
     }
-    const int n = static_cast<int>(jobs.size());
-    leaf_ok_.assign(n, false);
-    leaf_jobs_ = jobs;
-    const auto start = Clock::now();
-    std::atomic<int> done{0};
-    auto mapper = ColmapOptions(o_.mapper, TaskThreads(n));
-    mapper.fix_existing_images = o_.fix_base_in_leaves;
-    RunParallel(n, threads_, [&](int j) {
-      const auto [k, l] = jobs[j];
-      const TmrKernelNode& node = tree_.kernels[k];
-      std::vector<int> images = node.kernel_images;
-      images.insert(images.end(), node.leaf_clusters[l].begin(),
-                    node.leaf_clusters[l].end());
-      TmrTaskReport task;
-      task.name = "leaf " + std::to_string(k) + "." + std::to_string(l);
-      task.num_images = static_cast<int>(node.leaf_clusters[l].size());
-      const std::string db = LeafModel(k, l) + ".db";
-      std::string error;
-      if (!WriteTaskDatabase(o_.database_path, Ids(tree_, images), db,
-                             &error)) {
-        task.message = error;
-      } else {
-        const auto result = RunReconstructionTask(mapper, db, KernelModel(k),
-                                                  {}, LeafModel(k, l));
-        task.num_registered = result.num_registered - base_registered_[k];
-        task.seconds = result.seconds;
-        task.success = result.success;
-        task.message = result.message;
-        leaf_ok_[j] = result.success;
+    graph_start_ = Clock::now();
+    graph.Run(threads_);
+    if (!cache_) return Fail(cache_error, error);
+    clusters_.erase(std::remove(clusters_.begin(), clusters_.end(), nullptr),
+                    clusters_.end());
+    return true;
+  }
+
+  void RunKernel(int k, int num_threads) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    TmrTaskReport task;
+    task.name = "kernel " + std::to_string(k);
+    task.num_images = static_cast<int>(node.kernel_images.size());
+    const std::string db = KernelModel(k) + ".db";
+    std::string error;
+    if (!WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images), db,
+                           &error)) {
+      task.message = error;
+    } else {
+      // The exemplar first with COLMAP's choice of a second image (most
+      // matches, wide enough baseline), then with ours.
+      std::vector<std::pair<int, int>> pairs = {
+          {tree_.image_ids[node.exemplar], -1}};
+      for (const int second : node.second_images) {
+        pairs.emplace_back(tree_.image_ids[node.exemplar],
+                           tree_.image_ids[second]);
       }
-      Record(task, ++done, n, start);
-    });
+      const auto result = RunReconstructionTask(
+          ColmapOptions(o_.mapper, num_threads), db, "", pairs, KernelModel(k));
+      task.num_registered = result.num_registered;
+      task.seconds = result.seconds;
+      task.success = result.success;
+      task.message = result.message;
+      kernel_ok_[k] = result.success;
+      base_registered_[k] = result.num_registered;
+    }
+    Record(task, task.num_images);
+  }
+
+  void RunLeaf(int k, int l, int num_threads) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    TmrTaskReport task;
+    task.name = "leaf " + std::to_string(k) + "." + std::to_string(l);
+    task.num_images = static_cast<int>(node.leaf_clusters[l].size());
+    if (!kernel_ok_[k]) {
+      task.message = "its kernel task failed";
+      Record(task, task.num_images);
+      return;
+    }
+    std::vector<int> images = node.kernel_images;
+    images.insert(images.end(), node.leaf_clusters[l].begin(),
+                  node.leaf_clusters[l].end());
+    // The leaf task may also register kernel images its kernel task left.
+    task.num_images += static_cast<int>(node.kernel_images.size()) -
+                       base_registered_[k];
+    const std::string db = LeafModel(k, l) + ".db";
+    std::string error;
+    if (!WriteTaskDatabase(o_.database_path, Ids(tree_, images), db, &error)) {
+      task.message = error;
+    } else {
+      auto mapper = ColmapOptions(o_.mapper, num_threads);
+      mapper.fix_existing_images = o_.fix_base_in_leaves;
+      const auto result = RunReconstructionTask(mapper, db, KernelModel(k), {},
+                                                LeafModel(k, l));
+      task.num_registered = result.num_registered - base_registered_[k];
+      task.seconds = result.seconds;
+      task.success = result.success;
+      task.message = result.message;
+    }
+    if (task.success) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_leaves_.emplace_back(k, l);
+    }
+    Record(task, task.num_images);
   }
 
   // One database cache of all images, from a copy of the input
@@ -231,54 +250,52 @@ class TmrMapperRun {
                                          o_.mapper.ignore_watermarks, {});
   }
 
-  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeClusters(
-      const std::shared_ptr<colmap::DatabaseCache>& cache) {
-    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
-    const auto mapper = ColmapOptions(o_.mapper, threads_);
-    for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
-      if (!kernel_ok_[k]) continue;
-      const auto start = Clock::now();
-      auto model = std::make_shared<colmap::Reconstruction>();
-      model->ReadBinary(KernelModel(k));
-      int leaves = 0;
-      for (size_t j = 0; j < leaf_jobs_.size(); ++j) {
-        if (leaf_jobs_[j].first != k || !leaf_ok_[j]) continue;
-        colmap::Reconstruction leaf;
-        leaf.ReadBinary(LeafModel(k, leaf_jobs_[j].second));
-        // The mapper normalises every model after global bundle adjustment,
-        // so even with fixed kernel poses a leaf model has its own frame:
-        // align it on the kernel images both share, with COLMAP's own
-        // reprojection-verified alignment.
-        colmap::Sim3d model_from_leaf;
-        if (!colmap::AlignReconstructionsViaReprojections(
-                leaf, *model,
-                /*min_inlier_observations=*/0.3,
-                /*max_reproj_error=*/8.0, &model_from_leaf)) {
-          Progress("leaf " + std::to_string(k) + "." +
-                   std::to_string(leaf_jobs_[j].second) +
-                   ": cannot be aligned to its kernel, left out");
-          continue;
-        }
-        AppendReconstruction(leaf, model_from_leaf, model.get());
-        ++leaves;
-      }
-      if (leaves > 0)
-        RefineMergedModel(cache, mapper, o_.refine_merged_models, model);
-      TmrTaskReport task{
-          "merge cluster " + std::to_string(k),
-          static_cast<int>(tree_.kernels[k].cluster_images.size()),
-          static_cast<int>(model->NumRegImages()),
-          Since(start),
-          true,
-          std::to_string(leaves) + " leaf models"};
-      Record(task, k + 1, static_cast<int>(tree_.kernels.size()), start);
-      clusters.push_back(model);
+  // Merges the leaf models of kernel k into its image-cluster model.
+  void MergeCluster(int k, int num_threads) {
+    if (!kernel_ok_[k] || !cache_) return;
+    const auto start = Clock::now();
+    auto model = std::make_shared<colmap::Reconstruction>();
+    model->ReadBinary(KernelModel(k));
+    std::vector<int> leaves;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const auto& [kernel, l] : finished_leaves_)
+        if (kernel == k) leaves.push_back(l);
     }
-    return clusters;
+    std::sort(leaves.begin(), leaves.end());
+    int merged = 0;
+    for (const int l : leaves) {
+      colmap::Reconstruction leaf;
+      leaf.ReadBinary(LeafModel(k, l));
+      // The mapper normalises every model after global bundle adjustment,
+      // so even with fixed kernel poses a leaf model has its own frame:
+      // align it on the kernel images both share, with COLMAP's own
+      // reprojection-verified alignment.
+      colmap::Sim3d model_from_leaf;
+      if (!colmap::AlignReconstructionsViaReprojections(
+              leaf, *model,
+              /*min_inlier_observations=*/0.3,
+              /*max_reproj_error=*/8.0, &model_from_leaf)) {
+        Progress("leaf " + std::to_string(k) + "." + std::to_string(l) +
+                 ": cannot be aligned to its kernel, left out");
+        continue;
+      }
+      AppendReconstruction(leaf, model_from_leaf, model.get());
+      ++merged;
+    }
+    if (merged > 0) {
+      RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads),
+                        o_.refine_merged_models, model);
+    }
+    Record({"merge cluster " + std::to_string(k),
+            static_cast<int>(tree_.kernels[k].cluster_images.size()),
+            static_cast<int>(model->NumRegImages()), Since(start), true,
+            std::to_string(merged) + " leaf models"});
+    clusters_[k] = model;
   }
 
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
-      const std::shared_ptr<colmap::DatabaseCache>& cache,
+      const std::shared_ptr<const colmap::DatabaseCache>& cache,
       std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) {
     SortBySize(&clusters);
     const auto mapper = ColmapOptions(o_.mapper, threads_);
@@ -315,7 +332,7 @@ class TmrMapperRun {
             task.num_registered = static_cast<int>(scene->NumRegImages());
           }
           task.seconds = Since(start);
-          Record(task, 1, 1, start);
+          Record(task);
           if (a.success) {
             joined = merged = true;
             break;
@@ -370,7 +387,7 @@ class TmrMapperRun {
           Since(start),
           true,
           std::to_string(scene->NumRegImages() - before) + " images added"};
-      Record(task, i + 1, n, start);
+      Record(task);
     }
     SortBySize(scenes);
   }
@@ -400,10 +417,16 @@ class TmrMapperRun {
   int threads_ = 1;
   fs::path work_;
   TmrTree tree_;
-  std::vector<bool> kernel_ok_, leaf_ok_;
+  // Written by the tasks of the graph (each entry by one task only).
+  std::vector<char> kernel_ok_;
   std::vector<int> base_registered_;  // images registered by each kernel task
-  std::vector<std::pair<int, int>> leaf_jobs_;
+  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters_;
+  std::shared_ptr<const colmap::DatabaseCache> cache_;
+  // (kernel, leaf) of every leaf task that produced a model; under mutex_.
+  std::vector<std::pair<int, int>> finished_leaves_;
   std::mutex mutex_;
+  Clock::time_point graph_start_;
+  double total_weight_ = 0.0, done_weight_ = 0.0;
 };
 
 }  // namespace

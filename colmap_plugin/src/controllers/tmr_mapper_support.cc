@@ -28,19 +28,6 @@ colmap::IncrementalMapperOptions ColmapOptions(
   return o;
 }
 
-// Runs jobs on `workers` threads; job i gets index i.
-void RunParallel(int num_jobs, int workers,
-                 const std::function<void(int)>& job) {
-  std::atomic<int> next{0};
-  std::vector<std::thread> threads;
-  for (int w = 0; w < std::max(1, std::min(workers, num_jobs)); ++w) {
-    threads.emplace_back([&] {
-      for (int i = next++; i < num_jobs; i = next++) job(i);
-    });
-  }
-  for (std::thread& t : threads) t.join();
-}
-
 std::string ReportJson(const TmrMapperReport& r) {
   std::ostringstream out;
   out << "{\"num_images\": " << r.num_images

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// Small pieces of tmr_mapper's pipeline: COLMAP option bridging, a worker
-// pool and the run report.
+// Small pieces of tmr_mapper's pipeline: COLMAP option bridging and the run
+// report.
 #pragma once
 
 #include <colmap/controllers/incremental_mapper.h>
@@ -15,10 +15,6 @@ namespace tmr {
 // COLMAP's mapper options with tmr_mapper's pass-through values.
 colmap::IncrementalMapperOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads);
-
-// Runs jobs 0..num_jobs-1 on `workers` threads.
-void RunParallel(int num_jobs, int workers,
-                 const std::function<void(int)>& job);
 
 // report.json of a run.
 std::string ReportJson(const TmrMapperReport& report);

@@ -273,7 +273,7 @@ SceneLayout BuildSceneLayout(const SyntheticSceneOptions& options,
 }
 
 std::vector<ScenePoint> SampleScenePoints(const std::vector<Box>& boxes,
-                                          double density,
+                                          double density, double relief,
                                           std::mt19937_64& rng) {
   std::vector<ScenePoint> points;
   for (int b = 0; b < static_cast<int>(boxes.size()); ++b) {
@@ -300,7 +300,8 @@ std::vector<ScenePoint> SampleScenePoints(const std::vector<Box>& boxes,
             center + f.offset * f.normal +
             Uniform(rng, -f.half_width, f.half_width) * f.along +
             Eigen::Vector3d(0, 0, Uniform(rng, 0.3, height));
-        points.push_back({xyz, f.normal, b});
+        const double depth = relief > 0 ? Uniform(rng, -relief, relief) : 0.0;
+        points.push_back({xyz + depth * f.normal, f.normal, b});
       }
     }
   }

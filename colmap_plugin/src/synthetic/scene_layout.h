@@ -47,9 +47,11 @@ SceneLayout BuildSceneLayout(const SyntheticSceneOptions& options,
                              std::mt19937_64& rng);
 
 // Samples points uniformly on the textured faces (Poisson count with the
-// given density per square metre, from 0.3 m above ground to the top).
+// given density per square metre, from 0.3 m above ground to the top), each
+// displaced along the face normal by up to +-relief metres.
 std::vector<ScenePoint> SampleScenePoints(const std::vector<Box>& boxes,
-                                          double density, std::mt19937_64& rng);
+                                          double density, double relief,
+                                          std::mt19937_64& rng);
 
 // Rotation of a camera at horizontal heading `yaw` (radians, 0 = +x) tilted
 // up by `pitch`, with the image x axis to the right and y axis down.

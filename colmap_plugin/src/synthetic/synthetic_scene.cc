@@ -147,6 +147,7 @@ bool SyntheticSceneOptions::Check(std::string* error) const {
   }
   if (point_density <= 0 || max_range <= 0)
     return fail("point_density and max_range must be > 0");
+  if (facade_relief < 0) return fail("facade_relief must be >= 0");
   if (max_view_angle_deg <= 0 || max_view_angle_deg > 90 ||
       max_match_angle_deg <= 0 || max_match_angle_deg > 180 ||
       max_scale_ratio < 1) {
@@ -187,8 +188,8 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
   std::mt19937_64 rng(options.seed);
   const synthetic::SceneLayout layout =
       synthetic::BuildSceneLayout(options, rng);
-  const auto points =
-      synthetic::SampleScenePoints(layout.boxes, options.point_density, rng);
+  const auto points = synthetic::SampleScenePoints(
+      layout.boxes, options.point_density, options.facade_relief, rng);
   const int num_images = static_cast<int>(layout.cameras.size());
   if (num_images < 2) {
     *error = "the options give fewer than two cameras";

@@ -71,6 +71,11 @@ struct SyntheticSceneOptions {
   // --- shared: observations and matching ---
   // Texture: 3D points per square metre of facade.
   double point_density = 10.0;
+  // Facade relief: points stand up to this far in front of or behind their
+  // facade plane (windows, balconies, signs). Perfectly planar facades make
+  // focal length and depth hard to tell apart in bundle adjustment, which
+  // real facades rarely do.
+  double facade_relief = 0.4;
   // A point is seen only within this distance and when the angle between
   // its surface normal and the ray to the camera is below max_view_angle.
   double max_range = 60.0;

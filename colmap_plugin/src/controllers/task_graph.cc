@@ -1,0 +1,71 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/task_graph.h"
+
+#include <algorithm>
+#include <condition_variable>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace tmr {
+
+int TaskGraph::Add(Task task) {
+  for (const int d : task.depends) {
+    if (d < 0 || d >= NumTasks())
+      throw std::invalid_argument("TaskGraph: unknown dependency");
+  }
+  if (!task.run) throw std::invalid_argument("TaskGraph: task without run");
+  tasks_.push_back(std::move(task));
+  return NumTasks() - 1;
+}
+
+void TaskGraph::Run(int num_workers) {
+  if (num_workers < 1)
+    throw std::invalid_argument("TaskGraph: needs at least one worker");
+  const int n = NumTasks();
+  std::vector<int> waiting_on(n, 0);
+  std::vector<std::vector<int>> dependents(n);
+  for (int t = 0; t < n; ++t) {
+    waiting_on[t] = static_cast<int>(tasks_[t].depends.size());
+    for (const int d : tasks_[t].depends) dependents[d].push_back(t);
+  }
+  std::vector<int> ready;
+  for (int t = 0; t < n; ++t)
+    if (waiting_on[t] == 0) ready.push_back(t);
+
+  std::mutex mutex;
+  std::condition_variable changed;
+  int running = 0, finished = 0;
+  auto worker = [&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (true) {
+      changed.wait(lock, [&] { return !ready.empty() || finished == n; });
+      if (finished == n) return;
+      // The costliest ready task; ties go to the earlier one.
+      const auto best =
+          std::max_element(ready.begin(), ready.end(), [&](int a, int b) {
+            return tasks_[a].cost < tasks_[b].cost ||
+                   (tasks_[a].cost == tasks_[b].cost && a > b);
+          });
+      const int t = *best;
+      ready.erase(best);
+      ++running;
+      const int share = static_cast<int>(ready.size()) + running;
+      const int threads = std::max(1, num_workers / std::max(1, share));
+      lock.unlock();
+      tasks_[t].run(threads);
+      lock.lock();
+      --running;
+      ++finished;
+      for (const int d : dependents[t])
+        if (--waiting_on[d] == 0) ready.push_back(d);
+      changed.notify_all();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int w = 0; w < std::min(num_workers, std::max(1, n)); ++w)
+    threads.emplace_back(worker);
+  for (std::thread& thread : threads) thread.join();
+}
+
+}  // namespace tmr

@@ -1,0 +1,45 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tmr {
+
+// A dependency graph of tasks run on a fixed number of worker threads.
+//
+// tmr_mapper's reconstruction is a tree of independent units (paper Sec. 5):
+// a leaf-cluster task needs only its own kernel's model, a cluster merge
+// only its own leaves. Running them as a graph instead of in stages keeps
+// every worker busy: the leaves of a small kernel start while a large kernel
+// is still being reconstructed.
+//
+// Scheduling: among the tasks whose dependencies have finished, the one with
+// the largest `cost` starts first (longest-processing-time first, which
+// shortens the tail). A task is told how many threads it may use:
+// the workers divided among the tasks that are running or ready, at least
+// one, so that the last large task gets all cores.
+class TaskGraph {
+ public:
+  struct Task {
+    std::string name;
+    double cost = 1.0;         // relative work; larger starts first
+    std::vector<int> depends;  // ids of tasks that must finish first
+    std::function<void(int num_threads)> run;
+  };
+
+  // Returns the id of the new task; dependencies must already exist.
+  int Add(Task task);
+
+  int NumTasks() const { return static_cast<int>(tasks_.size()); }
+
+  // Runs every task once, on `num_workers` threads, and returns when all
+  // have finished. Tasks must not throw.
+  void Run(int num_workers);
+
+ private:
+  std::vector<Task> tasks_;
+};
+
+}  // namespace tmr
