@@ -84,7 +84,11 @@ class TmrMapperRun {
     if (!RunTaskGraph(error)) return false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
         MergeScenes(cache_, clusters_);
-    if (o_.complete_models) CompleteScenes(&scenes);
+    if (o_.complete_models) {
+      CompleteScenes(&scenes);
+      // New models from what is left may overlap the others.
+      if (ReconstructLeftovers(&scenes)) scenes = MergeScenes(cache_, scenes);
+    }
     if (!WriteModels(scenes, error)) return false;
     report_->total_seconds = Since(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
@@ -390,6 +394,41 @@ class TmrMapperRun {
       Record(task);
     }
     SortBySize(scenes);
+  }
+
+  // Images that no model holds yet get COLMAP's mapper from scratch, as
+  // `colmap mapper` would on them alone (several models if need be): parts
+  // of the scene that no kernel reached, or kernels COLMAP could only partly
+  // reconstruct. Returns whether it added a model.
+  bool ReconstructLeftovers(
+      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) {
+    const auto start = Clock::now();
+    std::unordered_set<std::string> held;
+    for (const auto& scene : *scenes) {
+      for (const colmap::image_t id : scene->RegImageIds())
+        held.insert(scene->Image(id).Name());
+    }
+    auto options = std::make_shared<colmap::IncrementalMapperOptions>(
+        ColmapOptions(o_.mapper, threads_));
+    options->extract_colors = false;
+    for (const std::string& name : tree_.image_names) {
+      if (!held.count(name)) options->image_names.insert(name);
+    }
+    const int leftovers = static_cast<int>(options->image_names.size());
+    if (leftovers < 2) return false;
+    auto manager = std::make_shared<colmap::ReconstructionManager>();
+    colmap::IncrementalMapperController controller(
+        options, "", (work_ / "merge.db").string(), manager);
+    controller.Run();
+    int registered = 0;
+    for (size_t i = 0; i < manager->Size(); ++i) {
+      registered += static_cast<int>(manager->Get(i)->NumRegImages());
+      scenes->push_back(manager->Get(i));
+    }
+    Record({"images left over", leftovers, registered, Since(start), true,
+            std::to_string(manager->Size()) + " new models"});
+    SortBySize(scenes);
+    return manager->Size() > 0;
   }
 
   bool WriteModels(

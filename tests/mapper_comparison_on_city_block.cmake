@@ -1,0 +1,58 @@
+# Stock `colmap mapper` and tmr_mapper on the same well-connected tmr_synth
+# scene (one city block with its four streets), scored by tmr_eval:
+# - stock registers >= 95% of the images in its largest model, median
+#   rotation error below 0.5 degrees (the scene is a fair test);
+# - tmr_mapper registers >= 98% of what stock registers, and its median
+#   rotation error is no worse (up to bundle-adjustment noise: 25% or
+#   0.01 degrees, whichever is larger); no model of either is a wrong merge.
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR}/stock ${WORK_DIR}/images)
+include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
+
+run(${TMR_SYNTH} --database_path ${WORK_DIR}/database.db --model_path ${WORK_DIR}/gt
+    --family city --city_blocks_x 1 --city_blocks_y 1 --seed 0)
+run(${COLMAP} mapper --database_path ${WORK_DIR}/database.db
+    --image_path ${WORK_DIR}/images --output_path ${WORK_DIR}/stock
+    --Mapper.num_threads 2)
+run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
+    --output_path ${WORK_DIR}/tmr --Mapper.num_threads 2)
+run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/stock
+    --output_json ${WORK_DIR}/stock.json)
+run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/tmr
+    --output_json ${WORK_DIR}/tmr.json)
+largest_model(${WORK_DIR}/stock.json stock)
+largest_model(${WORK_DIR}/tmr.json tmr)
+
+math(EXPR needed "(${stock_images} * 95 + 99) / 100")
+if(stock_registered LESS needed)
+  message(FATAL_ERROR "stock: registered ${stock_registered} < 95% of ${stock_images}")
+endif()
+if(stock_rotation GREATER_EQUAL 0.5)
+  message(FATAL_ERROR "stock: median rotation error ${stock_rotation} >= 0.5 deg")
+endif()
+math(EXPR needed "(${stock_registered} * 98 + 99) / 100")
+if(tmr_registered LESS needed)
+  message(FATAL_ERROR "tmr_mapper: registered ${tmr_registered} < 98% of stock's ${stock_registered}")
+endif()
+# CMake has no floating point: compare in micro-degrees.
+macro(micro out value)
+  if(NOT "${value}" MATCHES "^([0-9]+)(\\.([0-9]*))?$")
+    message(FATAL_ERROR "not a plain decimal number: ${value}")
+  endif()
+  set(whole ${CMAKE_MATCH_1})
+  string(SUBSTRING "${CMAKE_MATCH_3}000000" 0 6 fraction)
+  math(EXPR ${out} "${whole}0 * 100000 + 1${fraction} - 1000000")
+endmacro()
+micro(stock_u ${stock_rotation})
+micro(tmr_u ${tmr_rotation})
+math(EXPR allowed "${stock_u} * 125 / 100")
+math(EXPR floor "${stock_u} + 10000")
+if(floor GREATER allowed)
+  set(allowed ${floor})
+endif()
+if(tmr_u GREATER allowed)
+  message(FATAL_ERROR "tmr_mapper: median rotation error ${tmr_rotation} deg, stock ${stock_rotation} deg")
+endif()
+if(stock_wrong OR tmr_wrong)
+  message(FATAL_ERROR "wrong merge flagged (stock ${stock_wrong}, tmr_mapper ${tmr_wrong})")
+endif()
