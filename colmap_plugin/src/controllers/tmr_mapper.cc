@@ -336,7 +336,8 @@ class TmrMapperRun {
             task.num_registered = static_cast<int>(scene->NumRegImages());
           }
           task.seconds = Since(start);
-          Record(task);
+          // Pairs with no track in common are no merge candidates.
+          if (a.success || a.num_shared_tracks > 0) Record(task);
           if (a.success) {
             joined = merged = true;
             break;
