@@ -93,3 +93,34 @@ for scene in "${scenes[@]}"; do
     score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
   done
 done
+
+# Plot: wall time and time per image against scene size, per tool, from the
+# latest row of each (scene, tool) in results.csv (well-connected city scenes).
+if ! command -v gnuplot >/dev/null; then
+  echo "gnuplot not found (apt-get install gnuplot-nox): no plot" >&2
+  exit 0
+fi
+mkdir -p docs/images
+for tool in colmap_mapper colmap_hierarchical tmr_mapper; do
+  awk -F, -v t="$tool" 'NR > 1 && $3 == t && $1 ~ /^city/ {last[$2] = $4}
+    END {for (n in last) print n, last[n], last[n] / n}' "$OUT/results.csv" |
+    sort -n >"$OUT/$tool.dat"
+done
+gnuplot <<GP
+set terminal pngcairo size 1000,420 noenhanced
+set output 'docs/images/bench_mapper.png'
+set multiplot layout 1,2 title 'tmr_synth cities, ${THREADS} threads, same machine and run'
+set key top left
+set grid
+set xlabel 'images'
+set ylabel 'wall time (s)'
+plot '$OUT/colmap_mapper.dat' using 1:2 with linespoints lw 2 title 'colmap mapper', \
+     '$OUT/colmap_hierarchical.dat' using 1:2 with linespoints lw 2 title 'colmap hierarchical_mapper', \
+     '$OUT/tmr_mapper.dat' using 1:2 with linespoints lw 2 title 'tmr_mapper'
+set ylabel 'seconds per image'
+plot '$OUT/colmap_mapper.dat' using 1:3 with linespoints lw 2 title 'colmap mapper', \
+     '$OUT/colmap_hierarchical.dat' using 1:3 with linespoints lw 2 title 'colmap hierarchical_mapper', \
+     '$OUT/tmr_mapper.dat' using 1:3 with linespoints lw 2 title 'tmr_mapper'
+unset multiplot
+GP
+echo "plot: docs/images/bench_mapper.png"

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -308,6 +309,17 @@ class TmrMapperRun {
     align.seed = static_cast<unsigned>(o_.tree.seed);
     // Each cluster model joins the first (largest) scene it aligns with;
     // repeat until nothing merges, since a merge can create new overlaps.
+    // A scene is refined (tracks re-linked, global bundle adjustment) when it
+    // has grown by half since its last refinement, and once at the end: as
+    // COLMAP's mapper spaces its global adjustments, this keeps their total
+    // cost linear in the scene size instead of one per merge.
+    std::map<const colmap::Reconstruction*, size_t> refined_size;
+    for (const auto& model : clusters)
+      refined_size[model.get()] = model->NumRegImages();
+    auto refine = [&](const std::shared_ptr<colmap::Reconstruction>& scene) {
+      RefineMergedModel(cache, mapper, o_.refine_merged_models, scene);
+      refined_size[scene.get()] = scene->NumRegImages();
+    };
     bool merged = true;
     while (merged) {
       merged = false;
@@ -332,7 +344,8 @@ class TmrMapperRun {
                         : a.reason};
           if (a.success) {
             AppendReconstruction(*model, a.target_from_source, scene.get());
-            RefineMergedModel(cache, mapper, o_.refine_merged_models, scene);
+            if (scene->NumRegImages() >= 1.5 * refined_size[scene.get()])
+              refine(scene);
             task.num_registered = static_cast<int>(scene->NumRegImages());
           }
           task.seconds = Since(start);
@@ -348,6 +361,8 @@ class TmrMapperRun {
       clusters = std::move(next);
       SortBySize(&clusters);
     }
+    for (const auto& scene : clusters)
+      if (scene->NumRegImages() != refined_size[scene.get()]) refine(scene);
     return clusters;
   }
 
