@@ -29,6 +29,14 @@ void TaskGraph::Run(int num_workers) {
     waiting_on[t] = static_cast<int>(tasks_[t].depends.size());
     for (const int d : tasks_[t].depends) dependents[d].push_back(t);
   }
+  // Priority: the costliest path from the task to the end of the graph.
+  // Dependencies always have smaller ids, so one backward pass suffices.
+  std::vector<double> priority(n, 0.0);
+  for (int t = n - 1; t >= 0; --t) {
+    double tail = 0.0;
+    for (const int d : dependents[t]) tail = std::max(tail, priority[d]);
+    priority[t] = tasks_[t].cost + tail;
+  }
   std::vector<int> ready;
   for (int t = 0; t < n; ++t)
     if (waiting_on[t] == 0) ready.push_back(t);
@@ -41,11 +49,11 @@ void TaskGraph::Run(int num_workers) {
     while (true) {
       changed.wait(lock, [&] { return !ready.empty() || finished == n; });
       if (finished == n) return;
-      // The costliest ready task; ties go to the earlier one.
+      // The ready task of highest priority; ties go to the earlier one.
       const auto best =
           std::max_element(ready.begin(), ready.end(), [&](int a, int b) {
-            return tasks_[a].cost < tasks_[b].cost ||
-                   (tasks_[a].cost == tasks_[b].cost && a > b);
+            return priority[a] < priority[b] ||
+                   (priority[a] == priority[b] && a > b);
           });
       const int t = *best;
       ready.erase(best);

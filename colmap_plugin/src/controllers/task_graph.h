@@ -15,9 +15,12 @@ namespace tmr {
 // every worker busy: the leaves of a small kernel start while a large kernel
 // is still being reconstructed.
 //
-// Scheduling: among the tasks whose dependencies have finished, the one with
-// the largest `cost` starts first (longest-processing-time first, which
-// shortens the tail). A task is told how many threads it may use:
+// Scheduling: among the tasks whose dependencies have finished, the one on
+// the longest remaining path starts first: its priority is its own cost plus
+// the largest priority among the tasks that depend on it (critical-path list
+// scheduling; with no dependencies, longest-processing-time first). A kernel
+// with large leaves thus starts before a lone large leaf, which unlocks work
+// for the other workers sooner. A task is told how many threads it may use:
 // the workers divided among the tasks that are running or ready, at least
 // one, so that the last large task gets all cores.
 class TaskGraph {

@@ -45,6 +45,21 @@ TEST(TaskGraph, OneWorkerStartsTheCostliestReadyTaskFirst) {
   EXPECT_EQ(order, (std::vector<std::string>{"7", "7", "2", "1"}));
 }
 
+TEST(TaskGraph, OneWorkerFollowsTheLongestPath) {
+  // A kernel-like task (cost 3) whose dependent costs 10 goes before a lone
+  // task of cost 8.
+  TaskGraph graph;
+  std::vector<std::string> order;
+  auto record = [&order](const std::string& name) {
+    return [&order, name](int) { order.push_back(name); };
+  };
+  graph.Add({"lone", 8.0, {}, record("lone")});
+  const int kernel = graph.Add({"kernel", 3.0, {}, record("kernel")});
+  graph.Add({"leaf", 10.0, {kernel}, record("leaf")});
+  graph.Run(1);
+  EXPECT_EQ(order, (std::vector<std::string>{"kernel", "leaf", "lone"}));
+}
+
 TEST(TaskGraph, TheLastTaskGetsAllWorkers) {
   TaskGraph graph;
   std::atomic<int> first_threads{0}, last_threads{0};

@@ -138,7 +138,10 @@ class TmrMapperRun {
   }
 
   // Kernel, leaf and cluster-merge tasks as one graph: a leaf task waits
-  // only for its kernel, a cluster merge only for its own leaves.
+  // only for its kernel, a cluster merge only for its own leaves. Costs are
+  // rough seconds per image measured on tmr_synth cities: about one per
+  // image reconstructed, a leaf's fixed base a third of that, a merge a
+  // tenth per image.
   bool RunTaskGraph(std::string* error) {
     const int num_kernels = static_cast<int>(tree_.kernels.size());
     kernel_ok_.assign(num_kernels, false);
@@ -159,14 +162,15 @@ class TmrMapperRun {
       total_weight_ += kernel_size;
       for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
         const double leaf_size = node.leaf_clusters[l].size();
-        merge_depends.push_back(graph.Add(
-            {"leaf", kernel_size + leaf_size, {kernel}, [this, k, l](int t) {
-               RunLeaf(k, l, t);
-             }}));
+        merge_depends.push_back(
+            graph.Add({"leaf",
+                       leaf_size + 0.3 * kernel_size,
+                       {kernel},
+                       [this, k, l](int t) { RunLeaf(k, l, t); }}));
         total_weight_ += leaf_size;
       }
-      graph.Add({"merge", static_cast<double>(node.cluster_images.size()),
-                 merge_depends, [this, k](int t) { MergeCluster(k, t); }});
+      graph.Add({"merge", 0.1 * node.cluster_images.size(), merge_depends,
+                 [this, k](int t) { MergeCluster(k, t); }});
     }
     graph_start_ = Clock::now();
     graph.Run(threads_);
@@ -221,8 +225,8 @@ class TmrMapperRun {
     images.insert(images.end(), node.leaf_clusters[l].begin(),
                   node.leaf_clusters[l].end());
     // The leaf task may also register kernel images its kernel task left.
-    task.num_images += static_cast<int>(node.kernel_images.size()) -
-                       base_registered_[k];
+    task.num_images +=
+        static_cast<int>(node.kernel_images.size()) - base_registered_[k];
     const std::string db = LeafModel(k, l) + ".db";
     std::string error;
     if (!WriteTaskDatabase(o_.database_path, Ids(tree_, images), db, &error)) {

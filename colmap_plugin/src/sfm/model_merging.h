@@ -18,10 +18,13 @@ struct ModelAlignmentOptions {
   // RANSAC inlier threshold on 3D points, as a share of the median distance
   // between the shared points and the target cameras that see them.
   double max_relative_error = 0.05;
-  // At least this share of the shared tracks must fit the transform, both
-  // those of the anchor image (3D) and those of all images (reprojected
-  // into the target within max_reprojection_error_px).
+  // At least this share of the anchor image's shared tracks must fit the
+  // transform in 3D.
   double min_inlier_ratio = 0.5;
+  // Verification on the other images' shared tracks: more than
+  // min_shared_tracks of them, and at least min_relative_support times the
+  // anchor image's rate, must reproject within max_reprojection_error_px.
+  double min_relative_support = 0.5;
   double max_reprojection_error_px = 8.0;
   unsigned seed = 0;
 };
@@ -32,6 +35,7 @@ struct ModelAlignment {
   colmap::image_t anchor_image = colmap::kInvalidImageId;  // source image used
   int num_shared_tracks = 0;
   int num_inliers = 0;
+  int num_verified = 0;  // shared tracks of other images that fit
   std::string reason;  // why the models stay apart
 };
 
@@ -41,8 +45,11 @@ struct ModelAlignment {
 // transform from the 3D-3D pairs of those tracks with Umeyama's method
 // inside COLMAP's LO-RANSAC; otherwise keep the models apart. The models may
 // share no image (image clusters are disjoint), which COLMAP's own
-// image-based alignment needs. The transform is then verified on the shared
-// tracks of all images by reprojection, as COLMAP verifies its alignments.
+// image-based alignment needs. The transform is then verified by
+// reprojection, as COLMAP verifies its alignments, on the shared tracks of
+// the other images: a wrong merge (repetitive structure, a false pair) fits
+// the anchor image alone. With fewer than tau independent shared tracks the
+// models stay apart: a wrong merge is worse than two correct models.
 ModelAlignment AlignModelsBySharedTracks(
     const colmap::Reconstruction& target, const colmap::Reconstruction& source,
     const colmap::CorrespondenceGraph& graph,

@@ -1,0 +1,147 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// The scene-merge rule (AlignModelsBySharedTracks) on models cut from a
+// tmr_synth ground truth, with the correspondence graph of its database as
+// COLMAP loads it: disjoint halves of one place align with the similarity
+// that was applied; an unlinked place and a source whose other images
+// disagree with the anchor image (a wrong merge) stay apart.
+#include <colmap/geometry/sim3.h>
+#include <colmap/scene/database.h>
+#include <colmap/scene/database_cache.h>
+#include <colmap/scene/reconstruction.h>
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "evaluation/evaluate_reconstruction.h"
+#include "sfm/model_merging.h"
+#include "tmr/colmap/synthetic_scene.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ModelMergingTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() /
+           ("tmr_model_merging_test_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    // One place of 30 photos and one that nothing links to.
+    SyntheticSceneOptions options;
+    options.num_places = 1;
+    options.num_unlinked_places = 1;
+    options.cameras_per_place = 30;
+    options.place_distance = 100;
+    std::string error;
+    ASSERT_TRUE(WriteSyntheticScene(options, (dir_ / "database.db").string(),
+                                    (dir_ / "gt").string(), nullptr, &error))
+        << error;
+    gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
+    colmap::Database database((dir_ / "database.db").string());
+    cache_ = new std::shared_ptr<colmap::DatabaseCache>(
+        colmap::DatabaseCache::Create(database, 15, false, {}));
+  }
+  static void TearDownTestSuite() {
+    delete gt_;
+    delete cache_;
+    fs::remove_all(dir_);
+  }
+
+  // The ground truth with only the given images registered.
+  static colmap::Reconstruction Keep(
+      const std::vector<colmap::image_t>& images) {
+    colmap::Reconstruction model = *gt_;
+    for (const colmap::image_t id : gt_->RegImageIds()) {
+      if (std::find(images.begin(), images.end(), id) == images.end())
+        model.DeRegisterImage(id);
+    }
+    return model;
+  }
+
+  // Registered images of the ground truth whose name starts with `prefix`,
+  // by id.
+  static std::vector<colmap::image_t> Images(const std::string& prefix) {
+    std::vector<colmap::image_t> ids;
+    for (const colmap::image_t id : gt_->RegImageIds()) {
+      if (gt_->Image(id).Name().rfind(prefix, 0) == 0) ids.push_back(id);
+    }
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  }
+
+  static inline fs::path dir_;
+  static inline colmap::Reconstruction* gt_ = nullptr;
+  static inline std::shared_ptr<colmap::DatabaseCache>* cache_ = nullptr;
+};
+
+const colmap::Sim3d kMoved(2.5,
+                           Eigen::Quaterniond(Eigen::AngleAxisd(
+                               0.7,
+                               Eigen::Vector3d(0.2, 1.0, -0.4).normalized())),
+                           Eigen::Vector3d(14, -3, 8));
+
+TEST_F(ModelMergingTest, DisjointHalvesOfAPlaceAlign) {
+  const std::vector<colmap::image_t> place = Images("place0/");
+  ASSERT_GE(place.size(), 20u);
+  const size_t half = place.size() / 2;
+  const colmap::Reconstruction target =
+      Keep({place.begin(), place.begin() + half});
+  colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
+  source.Transform(kMoved);
+
+  const ModelAlignment a = AlignModelsBySharedTracks(
+      target, source, *(*cache_)->CorrespondenceGraph(),
+      ModelAlignmentOptions());
+  ASSERT_TRUE(a.success) << a.reason;
+  EXPECT_GT(a.num_verified, 12);
+  for (const colmap::image_t id : source.RegImageIds()) {
+    const Eigen::Vector3d recovered =
+        a.target_from_source * source.Image(id).ProjectionCenter();
+    EXPECT_LT((recovered - gt_->Image(id).ProjectionCenter()).norm(), 1e-3);
+  }
+}
+
+TEST_F(ModelMergingTest, AnUnlinkedPlaceStaysApart) {
+  const colmap::Reconstruction target = Keep(Images("place0/"));
+  const colmap::Reconstruction source = Keep(Images("place1/"));
+  ASSERT_GT(source.NumRegImages(), 0u);
+  const ModelAlignment a = AlignModelsBySharedTracks(
+      target, source, *(*cache_)->CorrespondenceGraph(),
+      ModelAlignmentOptions());
+  EXPECT_FALSE(a.success);
+  EXPECT_LE(a.num_shared_tracks, 12) << a.reason;
+}
+
+TEST_F(ModelMergingTest, ASourceThatFitsOnlyAtItsAnchorImageStaysApart) {
+  const std::vector<colmap::image_t> place = Images("place0/");
+  const size_t half = place.size() / 2;
+  const colmap::Reconstruction target =
+      Keep({place.begin(), place.begin() + half});
+  colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
+  const ModelAlignment good = AlignModelsBySharedTracks(
+      target, source, *(*cache_)->CorrespondenceGraph(),
+      ModelAlignmentOptions());
+  ASSERT_TRUE(good.success) << good.reason;
+  // Every point the anchor image does not see is displaced, as when the
+  // source is wrongly put together, or the anchor's tracks are repetitive
+  // structure that happens to fit.
+  const colmap::Image& anchor = source.Image(good.anchor_image);
+  std::unordered_set<colmap::point3D_t> seen;
+  for (const colmap::Point2D& p : anchor.Points2D())
+    if (p.HasPoint3D()) seen.insert(p.point3D_id);
+  for (const colmap::point3D_t id : source.Point3DIds()) {
+    if (!seen.count(id)) source.Point3D(id).xyz += Eigen::Vector3d(6, 0, 3);
+  }
+  const ModelAlignment bad = AlignModelsBySharedTracks(
+      target, source, *(*cache_)->CorrespondenceGraph(),
+      ModelAlignmentOptions());
+  EXPECT_FALSE(bad.success);
+  EXPECT_EQ(bad.anchor_image, good.anchor_image);
+  EXPECT_NE(bad.reason.find("other images"), std::string::npos) << bad.reason;
+}
+
+}  // namespace
+}  // namespace tmr
