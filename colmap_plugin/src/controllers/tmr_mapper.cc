@@ -177,6 +177,8 @@ class TmrMapperRun {
     if (!cache_) return Fail(cache_error, error);
     clusters_.erase(std::remove(clusters_.begin(), clusters_.end(), nullptr),
                     clusters_.end());
+    clusters_.insert(clusters_.end(), kernel_parts_.begin(),
+                     kernel_parts_.end());
     return true;
   }
 
@@ -207,6 +209,20 @@ class TmrMapperRun {
       task.message = result.message;
       kernel_ok_[k] = result.success;
       base_registered_[k] = result.num_registered;
+      if (!result.part_models.empty()) {
+        task.message +=
+            "; the rest in " + std::to_string(result.part_models.size()) +
+            " more models of " +
+            std::to_string(result.num_registered_in_parts) + " images";
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (const std::string& path : result.part_models) {
+          auto part = std::make_shared<colmap::Reconstruction>();
+          part->ReadBinary(path);
+          for (const colmap::image_t id : part->RegImageIds())
+            part_images_.insert(id);
+          kernel_parts_.push_back(part);
+        }
+      }
     }
     Record(task, task.num_images);
   }
@@ -221,15 +237,21 @@ class TmrMapperRun {
       Record(task, task.num_images);
       return;
     }
-    std::vector<int> images = node.kernel_images;
-    images.insert(images.end(), node.leaf_clusters[l].begin(),
-                  node.leaf_clusters[l].end());
-    // The leaf task may also register kernel images its kernel task left.
-    task.num_images +=
-        static_cast<int>(node.kernel_images.size()) - base_registered_[k];
+    // The kernel images, except those a part model of the kernel holds
+    // (no image in two models), and the leaf's: the leaf task may also
+    // register kernel images its kernel task left.
+    std::vector<uint32_t> images;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const uint32_t id : Ids(tree_, node.kernel_images))
+        if (!part_images_.count(id)) images.push_back(id);
+    }
+    task.num_images += static_cast<int>(images.size()) - base_registered_[k];
+    for (const uint32_t id : Ids(tree_, node.leaf_clusters[l]))
+      images.push_back(id);
     const std::string db = LeafModel(k, l) + ".db";
     std::string error;
-    if (!WriteTaskDatabase(o_.database_path, Ids(tree_, images), db, &error)) {
+    if (!WriteTaskDatabase(o_.database_path, images, db, &error)) {
       task.message = error;
     } else {
       auto mapper = ColmapOptions(o_.mapper, num_threads);
@@ -480,6 +502,10 @@ class TmrMapperRun {
   std::vector<char> kernel_ok_;
   std::vector<int> base_registered_;  // images registered by each kernel task
   std::vector<std::shared_ptr<colmap::Reconstruction>> clusters_;
+  // Models of kernel images their kernel's model left out; under mutex_.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> kernel_parts_;
+  // Their images (under mutex_), left out of the leaf tasks.
+  std::unordered_set<uint32_t> part_images_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
   // (kernel, leaf) of every leaf task that produced a model; under mutex_.
   std::vector<std::pair<int, int>> finished_leaves_;

@@ -55,6 +55,30 @@ std::vector<SharedTrack> SharedTracks(const colmap::Reconstruction& target,
   return shared;
 }
 
+// Similarity from the 3D-3D pairs of shared tracks: Umeyama's method inside
+// COLMAP's LO-RANSAC, with an inlier threshold relative to the median
+// viewing distance.
+Sim3Ransac::Report EstimateSimilarity(const std::vector<SharedTrack>& tracks,
+                                      const ModelAlignmentOptions& options) {
+  std::vector<Eigen::Vector3d> src, tgt;
+  std::vector<double> distances;
+  for (const SharedTrack& t : tracks) {
+    src.push_back(t.source_xyz);
+    tgt.push_back(t.target_xyz);
+    distances.push_back(t.viewing_distance);
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2,
+                   distances.end());
+  colmap::RANSACOptions ransac;
+  ransac.max_error =
+      options.max_relative_error * distances[distances.size() / 2];
+  ransac.min_inlier_ratio = options.min_inlier_ratio;
+  ransac.max_num_trials = 5000;
+  colmap::SetPRNGSeed(options.seed);
+  Sim3Ransac estimator(ransac);
+  return estimator.Estimate(src, tgt);
+}
+
 }  // namespace
 
 ModelAlignment AlignModelsBySharedTracks(
@@ -82,39 +106,32 @@ ModelAlignment AlignModelsBySharedTracks(
                     std::to_string(options.min_shared_tracks) + ")";
     return result;
   }
-  std::vector<Eigen::Vector3d> src, tgt;
-  std::vector<double> distances;
-  for (const SharedTrack& t : best) {
-    src.push_back(t.source_xyz);
-    tgt.push_back(t.target_xyz);
-    distances.push_back(t.viewing_distance);
-  }
-  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2,
-                   distances.end());
-  colmap::RANSACOptions ransac;
-  ransac.max_error =
-      options.max_relative_error * distances[distances.size() / 2];
-  ransac.min_inlier_ratio = options.min_inlier_ratio;
-  ransac.max_num_trials = 5000;
-  colmap::SetPRNGSeed(options.seed);
-  Sim3Ransac estimator(ransac);
-  const auto report = estimator.Estimate(src, tgt);
-  result.num_inliers = static_cast<int>(report.support.num_inliers);
-  if (!report.success || result.num_inliers <= options.min_shared_tracks ||
+  // The paper's estimate, from the anchor image's tracks alone.
+  const auto anchor_estimate = EstimateSimilarity(best, options);
+  result.num_inliers = static_cast<int>(anchor_estimate.support.num_inliers);
+  if (!anchor_estimate.success ||
+      result.num_inliers <= options.min_shared_tracks ||
       result.num_inliers < options.min_inlier_ratio * best.size()) {
     result.reason =
         "no similarity fits: " + std::to_string(result.num_inliers) + " of " +
         std::to_string(best.size()) + " shared tracks agree";
     return result;
   }
-  // Verification on the shared tracks of the other images, which played no
-  // part in the estimate: the source point, moved into the target, must
-  // reproject onto its target observation. Some shared tracks are wrong
-  // whatever the transform (a correspondence can be an outlier that passed
-  // two-view verification), so the other images are held to the anchor
-  // image's own rate under the same test rather than to a fixed one; a wrong
-  // merge fits the anchor image alone.
-  const colmap::Sim3d sim = colmap::Sim3d::FromMatrix(report.model);
+  // The anchor image's tracks cover a small patch of the scene, and a
+  // similarity fitted to a patch tilts away from it; the final estimate uses
+  // the shared tracks of every image, which span the whole overlap.
+  const auto estimate = EstimateSimilarity(all, options);
+  if (!estimate.success) {
+    result.reason = "no similarity fits the shared tracks of all images";
+    return result;
+  }
+  // Verification: the source point, moved into the target, must reproject
+  // onto its target observation. Some shared tracks are wrong whatever the
+  // transform (a correspondence can be an outlier that passed two-view
+  // verification), so the other images are held to the anchor image's own
+  // rate under the same test rather than to a fixed one: a wrong merge
+  // (repetitive structure, a false pair) fits the anchor image alone.
+  const colmap::Sim3d sim = colmap::Sim3d::FromMatrix(estimate.model);
   auto reprojects = [&](const SharedTrack& t) {
     const colmap::Image& image = target.Image(t.target_image);
     const Eigen::Vector3d in_camera =

@@ -45,11 +45,14 @@ struct ModelAlignment {
 // transform from the 3D-3D pairs of those tracks with Umeyama's method
 // inside COLMAP's LO-RANSAC; otherwise keep the models apart. The models may
 // share no image (image clusters are disjoint), which COLMAP's own
-// image-based alignment needs. The transform is then verified by
-// reprojection, as COLMAP verifies its alignments, on the shared tracks of
-// the other images: a wrong merge (repetitive structure, a false pair) fits
-// the anchor image alone. With fewer than tau independent shared tracks the
-// models stay apart: a wrong merge is worse than two correct models.
+// image-based alignment needs. When the anchor image's tracks agree, the
+// similarity is estimated again from the shared tracks of all images (the
+// anchor's cover a small patch, and a fit to a patch tilts away from it),
+// then verified by reprojection, as COLMAP verifies its alignments: the
+// other images' shared tracks must fit at half the anchor image's rate or
+// better, since a wrong merge (repetitive structure, a false pair) fits the
+// anchor image alone. With tau or fewer fitting tracks outside the anchor
+// image the models stay apart: a wrong merge is worse than two models.
 ModelAlignment AlignModelsBySharedTracks(
     const colmap::Reconstruction& target, const colmap::Reconstruction& source,
     const colmap::CorrespondenceGraph& graph,

@@ -27,6 +27,49 @@ bool WriteModelAtomically(const colmap::Reconstruction& model,
   return !ec;
 }
 
+namespace {
+
+// Smallest model worth keeping from the rest of a kernel.
+constexpr int kMinPartImages = 3;
+
+// The images of the task database that `model` does not register, mapped
+// from scratch; every model of at least kMinPartImages images is written.
+void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
+                     const std::string& task_database,
+                     const colmap::Reconstruction& model,
+                     const std::string& output_model,
+                     ReconstructionTaskResult* result) {
+  auto options =
+      std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
+  options->multiple_models = true;
+  options->extract_colors = false;
+  options->min_model_size = kMinPartImages;
+  options->image_names.clear();
+  {
+    colmap::Database database(task_database);
+    for (const colmap::Image& image : database.ReadAllImages()) {
+      if (!model.ExistsImage(image.ImageId()) ||
+          !model.IsImageRegistered(image.ImageId()))
+        options->image_names.insert(image.Name());
+    }
+  }
+  auto manager = std::make_shared<colmap::ReconstructionManager>();
+  colmap::IncrementalMapperController controller(options, "", task_database,
+                                                 manager);
+  controller.Run();
+  for (size_t i = 0; i < manager->Size(); ++i) {
+    const auto& part = *manager->Get(i);
+    if (static_cast<int>(part.NumRegImages()) < kMinPartImages) continue;
+    const std::string path =
+        output_model + "_part" + std::to_string(result->part_models.size() + 1);
+    if (!WriteModelAtomically(part, path)) continue;
+    result->part_models.push_back(path);
+    result->num_registered_in_parts += static_cast<int>(part.NumRegImages());
+  }
+}
+
+}  // namespace
+
 ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalMapperOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
@@ -82,6 +125,11 @@ ReconstructionTaskResult RunReconstructionTask(
     result.num_registered = static_cast<int>(best->NumRegImages());
     result.success = WriteModelAtomically(*best, output_model);
     result.message = result.success ? how : "cannot write " + output_model;
+  }
+  if (result.success && base_model.empty() &&
+      result.num_registered + kMinPartImages <= result.num_images) {
+    ReconstructRest(mapper_options, task_database, *best, output_model,
+                    &result);
   }
   if (!result.success && result.message.empty())
     result.message = "no initial pair worked";

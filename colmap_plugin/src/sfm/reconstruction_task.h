@@ -15,6 +15,10 @@ struct ReconstructionTaskResult {
   int num_registered = 0;  // registered in the output model
   double seconds = 0.0;
   std::string message;  // why it failed, or which initial pair worked
+  // Kernel tasks: models of the images the main model could not register,
+  // written to output_model + "_part1", "_part2", ...
+  std::vector<std::string> part_models;
+  int num_registered_in_parts = 0;
 };
 
 // One reconstruction task of the TMR-tree (paper Sec. 5): COLMAP's
@@ -25,7 +29,10 @@ struct ReconstructionTaskResult {
 // Kernel task: no base model; the first two initial pairs are tried in
 // order (the exemplar with COLMAP's choice of a second image, then with
 // ours; -1 lets COLMAP choose), then COLMAP's automatic choice; the best
-// model wins, and a model with 80% of the images ends the search.
+// model wins, and a model with 80% of the images ends the search. When the
+// winner leaves images out, COLMAP's mapper then reconstructs those on their
+// own (several models if need be): a kernel can hold two dense groups that
+// only its full scene links, and their models may still merge later.
 // Leaf task: `base_model` is the kernel's model; the mapper extends a copy
 // of it with the task's other images, keeping the base poses fixed when
 // mapper_options.fix_existing_images is set.
