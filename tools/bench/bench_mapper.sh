@@ -10,7 +10,8 @@
 #          1,800 / 3,752 images) or places4 places8 places16 (weakly linked
 #          places, 120 images each). Default: city1 places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
-# of repeating them.
+# of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
+# tmr_mapper") picks the tools and their order.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
@@ -70,7 +71,7 @@ for scene in "${scenes[@]}"; do
     "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "$scene")
   fi
   images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
-  for tool in colmap_mapper colmap_hierarchical tmr_mapper; do
+  for tool in ${TOOLS:-colmap_mapper colmap_hierarchical tmr_mapper}; do
     out="$dir/$tool"
     if [[ -n "${REUSE:-}" && -f "$out.log.time" ]]; then  # REUSE=1: keep earlier runs
       read -r wall peak < <(awk '{printf "%s %.0f\n", $1, $2 / 1024}' "$out.log.time")

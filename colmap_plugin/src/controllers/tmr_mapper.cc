@@ -10,12 +10,12 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
 #include <unordered_set>
 
+#include "controllers/scene_assembly.h"
 #include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
@@ -31,13 +31,6 @@ using Clock = std::chrono::steady_clock;
 
 double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Orders models by registered images, largest first.
-void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
-  std::sort(models->begin(), models->end(), [](const auto& a, const auto& b) {
-    return a->NumRegImages() > b->NumRegImages();
-  });
 }
 
 std::vector<uint32_t> Ids(const TmrTree& tree,
@@ -68,6 +61,8 @@ class TmrMapperRun {
     tree_ = BuildTmrTree(graph, o_.tree);
     report_->num_images = graph.NumImages();
     report_->partition_seconds = Since(start);
+    // A killed run's task files are not reused (yet): start clean.
+    fs::remove_all(work_);
     fs::create_directories(work_);
     std::ostringstream json;
     WriteTmrTreeJson(tree_, json);
@@ -83,13 +78,18 @@ class TmrMapperRun {
       return Fail("the partition found no kernel", error);
 
     if (!RunTaskGraph(error)) return false;
+    SceneAssembler assembler(o_, cache_, (work_ / "merge.db").string(),
+                             tree_.image_names, threads_,
+                             [this](const TmrTaskReport& t) { Record(t); });
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
-        MergeScenes(cache_, clusters_);
+        assembler.MergeScenes(clusters_);
     if (o_.complete_models) {
-      CompleteScenes(&scenes);
+      assembler.CompleteScenes(&scenes);
       // New models from what is left may overlap the others.
-      if (ReconstructLeftovers(&scenes)) scenes = MergeScenes(cache_, scenes);
+      if (assembler.ReconstructLeftovers(&scenes))
+        scenes = assembler.MergeScenes(scenes);
     }
+    assembler.RefineMergedScenes(scenes);
     if (!WriteModels(scenes, error)) return false;
     report_->total_seconds = Since(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
@@ -323,154 +323,6 @@ class TmrMapperRun {
             static_cast<int>(model->NumRegImages()), Since(start), true,
             std::to_string(merged) + " leaf models"});
     clusters_[k] = model;
-  }
-
-  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
-      const std::shared_ptr<const colmap::DatabaseCache>& cache,
-      std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) {
-    SortBySize(&clusters);
-    const auto mapper = ColmapOptions(o_.mapper, threads_);
-    ModelAlignmentOptions align;
-    align.min_shared_tracks = o_.merge_min_shared_tracks;
-    align.seed = static_cast<unsigned>(o_.tree.seed);
-    // Each cluster model joins the first (largest) scene it aligns with;
-    // repeat until nothing merges, since a merge can create new overlaps.
-    // A scene is refined (tracks re-linked, global bundle adjustment) when it
-    // has grown by half since its last refinement, and once at the end: as
-    // COLMAP's mapper spaces its global adjustments, this keeps their total
-    // cost linear in the scene size instead of one per merge.
-    std::map<const colmap::Reconstruction*, size_t> refined_size;
-    for (const auto& model : clusters)
-      refined_size[model.get()] = model->NumRegImages();
-    auto refine = [&](const std::shared_ptr<colmap::Reconstruction>& scene) {
-      RefineMergedModel(cache, mapper, o_.refine_merged_models, scene);
-      refined_size[scene.get()] = scene->NumRegImages();
-    };
-    bool merged = true;
-    while (merged) {
-      merged = false;
-      std::vector<std::shared_ptr<colmap::Reconstruction>> next;
-      for (const auto& model : clusters) {
-        bool joined = false;
-        for (const auto& scene : next) {
-          const auto start = Clock::now();
-          const ModelAlignment a = AlignModelsBySharedTracks(
-              *scene, *model, *cache->CorrespondenceGraph(), align);
-          TmrTaskReport task{
-              "merge a model of " + std::to_string(model->NumRegImages()) +
-                  " images into a scene of " +
-                  std::to_string(scene->NumRegImages()),
-              static_cast<int>(model->NumRegImages()),
-              0,
-              0.0,
-              a.success,
-              a.success ? std::to_string(a.num_inliers) + " of " +
-                              std::to_string(a.num_shared_tracks) +
-                              " shared tracks fit"
-                        : a.reason};
-          if (a.success) {
-            AppendReconstruction(*model, a.target_from_source, scene.get());
-            if (scene->NumRegImages() >= 1.5 * refined_size[scene.get()])
-              refine(scene);
-            task.num_registered = static_cast<int>(scene->NumRegImages());
-          }
-          task.seconds = Since(start);
-          // Pairs with no track in common are no merge candidates.
-          if (a.success || a.num_shared_tracks > 0) Record(task);
-          if (a.success) {
-            joined = merged = true;
-            break;
-          }
-        }
-        if (!joined) next.push_back(model);
-      }
-      clusters = std::move(next);
-      SortBySize(&clusters);
-    }
-    for (const auto& scene : clusters)
-      if (scene->NumRegImages() != refined_size[scene.get()]) refine(scene);
-    return clusters;
-  }
-
-  // Registers the images that no model holds yet (kernel images the kernel
-  // task could not register, leaves of failed leaf tasks, unclustered
-  // images): COLMAP's mapper continues each scene model, largest first, over
-  // all images that no other model holds.
-  void CompleteScenes(
-      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) {
-    auto mapper = ColmapOptions(o_.mapper, threads_);
-    mapper.multiple_models = false;
-    mapper.extract_colors = false;
-    const int n = static_cast<int>(scenes->size());
-    for (int i = 0; i < n; ++i) {
-      const auto start = Clock::now();
-      auto& scene = (*scenes)[i];
-      const int before = static_cast<int>(scene->NumRegImages());
-      auto options = std::make_shared<colmap::IncrementalMapperOptions>(mapper);
-      std::unordered_set<std::string> held_elsewhere;
-      for (int j = 0; j < n; ++j) {
-        if (j == i) continue;
-        for (const colmap::image_t id : (*scenes)[j]->RegImageIds()) {
-          held_elsewhere.insert((*scenes)[j]->Image(id).Name());
-        }
-      }
-      for (const std::string& name : tree_.image_names) {
-        if (!held_elsewhere.count(name)) options->image_names.insert(name);
-      }
-      auto manager = std::make_shared<colmap::ReconstructionManager>();
-      *manager->Get(manager->Add()) = *scene;
-      colmap::IncrementalMapperController controller(
-          options, "", (work_ / "merge.db").string(), manager);
-      controller.Run();
-      if (manager->Size() > 0 &&
-          manager->Get(0)->NumRegImages() >= scene->NumRegImages()) {
-        scene = manager->Get(0);
-      }
-      TmrTaskReport task{
-          "complete model " + std::to_string(i),
-          before,
-          static_cast<int>(scene->NumRegImages()),
-          Since(start),
-          true,
-          std::to_string(scene->NumRegImages() - before) + " images added"};
-      Record(task);
-    }
-    SortBySize(scenes);
-  }
-
-  // Images that no model holds yet get COLMAP's mapper from scratch, as
-  // `colmap mapper` would on them alone (several models if need be): parts
-  // of the scene that no kernel reached, or kernels COLMAP could only partly
-  // reconstruct. Returns whether it added a model.
-  bool ReconstructLeftovers(
-      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) {
-    const auto start = Clock::now();
-    std::unordered_set<std::string> held;
-    for (const auto& scene : *scenes) {
-      for (const colmap::image_t id : scene->RegImageIds())
-        held.insert(scene->Image(id).Name());
-    }
-    auto options = std::make_shared<colmap::IncrementalMapperOptions>(
-        ColmapOptions(o_.mapper, threads_));
-    options->extract_colors = false;
-    for (const std::string& name : tree_.image_names) {
-      if (!held.count(name)) options->image_names.insert(name);
-    }
-    const int leftovers = static_cast<int>(options->image_names.size());
-    if (leftovers < 2) return false;
-    auto manager = std::make_shared<colmap::ReconstructionManager>();
-    colmap::IncrementalMapperController controller(
-        options, "", (work_ / "merge.db").string(), manager);
-    controller.Run();
-    int registered = 0;
-    for (size_t i = 0; i < manager->Size(); ++i) {
-      registered += static_cast<int>(manager->Get(i)->NumRegImages());
-      scenes->push_back(manager->Get(i));
-    }
-    Record({"images left over", leftovers, registered, Since(start), true,
-            std::to_string(manager->Size()) + " new models"});
-    SortBySize(scenes);
-    return manager->Size() > 0;
   }
 
   bool WriteModels(

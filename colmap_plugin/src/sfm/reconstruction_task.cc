@@ -32,6 +32,11 @@ namespace {
 // Smallest model worth keeping from the rest of a kernel.
 constexpr int kMinPartImages = 3;
 
+// A model with this share of the task's images ends the search for an
+// initial pair; the rest of a kernel is mapped on its own (ReconstructRest),
+// which costs less than another attempt at the whole kernel.
+constexpr double kEnoughShare = 0.5;
+
 // The images of the task database that `model` does not register, mapped
 // from scratch; every model of at least kMinPartImages images is written.
 void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
@@ -91,7 +96,7 @@ ReconstructionTaskResult RunReconstructionTask(
   }
   attempts.emplace_back(-1, -1);
   // Keep the best model over the attempts; stop at one that registers
-  // most of the task's images.
+  // half of the task's images.
   std::shared_ptr<colmap::Reconstruction> best;
   std::string how;
   for (const auto& [image1, image2] : attempts) {
@@ -119,7 +124,7 @@ ReconstructionTaskResult RunReconstructionTask(
                                  std::to_string(image2);
       }
     }
-    if (best && best->NumRegImages() >= 0.8 * result.num_images) break;
+    if (best && best->NumRegImages() >= kEnoughShare * result.num_images) break;
   }
   if (best && best->NumRegImages() >= 2) {
     result.num_registered = static_cast<int>(best->NumRegImages());

@@ -29,7 +29,7 @@ struct ReconstructionTaskResult {
 // Kernel task: no base model; the first two initial pairs are tried in
 // order (the exemplar with COLMAP's choice of a second image, then with
 // ours; -1 lets COLMAP choose), then COLMAP's automatic choice; the best
-// model wins, and a model with 80% of the images ends the search. When the
+// model wins, and a model with half of the images ends the search. When the
 // winner leaves images out, COLMAP's mapper then reconstructs those on their
 // own (several models if need be): a kernel can hold two dense groups that
 // only its full scene links, and their models may still merge later.

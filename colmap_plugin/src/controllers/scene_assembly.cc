@@ -1,0 +1,196 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/scene_assembly.h"
+
+#include <colmap/scene/reconstruction_manager.h>
+
+#include <chrono>
+#include <unordered_set>
+
+#include "controllers/tmr_mapper_support.h"
+#include "sfm/model_merging.h"
+
+namespace tmr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Names of the images the models register, except model `skip`.
+std::unordered_set<std::string> HeldImageNames(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
+    int skip = -1) {
+  std::unordered_set<std::string> held;
+  for (int i = 0; i < static_cast<int>(models.size()); ++i) {
+    if (i == skip) continue;
+    for (const colmap::image_t id : models[i]->RegImageIds())
+      held.insert(models[i]->Image(id).Name());
+  }
+  return held;
+}
+
+}  // namespace
+
+void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
+  std::sort(models->begin(), models->end(), [](const auto& a, const auto& b) {
+    return a->NumRegImages() > b->NumRegImages();
+  });
+}
+
+SceneAssembler::SceneAssembler(
+    const TmrMapperOptions& options,
+    std::shared_ptr<const colmap::DatabaseCache> cache,
+    std::string merge_database, std::vector<std::string> image_names,
+    int num_threads, std::function<void(const TmrTaskReport&)> record)
+    : o_(options),
+      cache_(std::move(cache)),
+      merge_database_(std::move(merge_database)),
+      image_names_(std::move(image_names)),
+      num_threads_(num_threads),
+      record_(std::move(record)) {}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>>
+SceneAssembler::MergeScenes(
+    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) const {
+  SortBySize(&clusters);
+  ModelAlignmentOptions align;
+  align.min_shared_tracks = o_.merge_min_shared_tracks;
+  align.seed = static_cast<unsigned>(o_.tree.seed);
+  // Each cluster model joins the first (largest) scene it aligns with;
+  // repeat until nothing merges, since a merge can create new overlaps.
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    std::vector<std::shared_ptr<colmap::Reconstruction>> next;
+    for (const auto& model : clusters) {
+      bool joined = false;
+      for (const auto& scene : next) {
+        const auto start = Clock::now();
+        const ModelAlignment a = AlignModelsBySharedTracks(
+            *scene, *model, *cache_->CorrespondenceGraph(), align);
+        TmrTaskReport task{
+            "merge a model of " + std::to_string(model->NumRegImages()) +
+                " images into a scene of " +
+                std::to_string(scene->NumRegImages()),
+            static_cast<int>(model->NumRegImages()),
+            0,
+            0.0,
+            a.success,
+            a.success
+                ? std::to_string(a.num_inliers) + " of " +
+                      std::to_string(a.num_shared_tracks) + " shared tracks fit"
+                : a.reason};
+        if (a.success) {
+          AppendReconstruction(*model, a.target_from_source, scene.get());
+          unrefined_.insert(scene.get());
+          task.num_registered = static_cast<int>(scene->NumRegImages());
+        }
+        task.seconds = Since(start);
+        // Pairs with no track in common are no merge candidates.
+        if (a.success || a.num_shared_tracks > 0) record_(task);
+        if (a.success) {
+          joined = merged = true;
+          break;
+        }
+      }
+      if (!joined) next.push_back(model);
+    }
+    clusters = std::move(next);
+    SortBySize(&clusters);
+  }
+  return clusters;
+}
+
+// Registers the images that no model holds yet (kernel images the kernel
+// task could not register, leaves of failed leaf tasks, unclustered
+// images): COLMAP's mapper continues each scene model, largest first, over
+// all images that no other model holds.
+void SceneAssembler::CompleteScenes(
+    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
+  auto mapper = ColmapOptions(o_.mapper, num_threads_);
+  mapper.multiple_models = false;
+  mapper.extract_colors = false;
+  const int n = static_cast<int>(scenes->size());
+  // Nothing to do (and no database to load) when every image is held.
+  if (HeldImageNames(*scenes).size() >= image_names_.size()) return;
+  for (int i = 0; i < n; ++i) {
+    const auto start = Clock::now();
+    auto& scene = (*scenes)[i];
+    const int before = static_cast<int>(scene->NumRegImages());
+    auto options = std::make_shared<colmap::IncrementalMapperOptions>(mapper);
+    const auto held_elsewhere = HeldImageNames(*scenes, i);
+    for (const std::string& name : image_names_) {
+      if (!held_elsewhere.count(name)) options->image_names.insert(name);
+    }
+    auto manager = std::make_shared<colmap::ReconstructionManager>();
+    *manager->Get(manager->Add()) = *scene;
+    colmap::IncrementalMapperController controller(options, "", merge_database_,
+                                                   manager);
+    controller.Run();
+    if (manager->Size() > 0 &&
+        manager->Get(0)->NumRegImages() > scene->NumRegImages()) {
+      // The controller ended with its iterative global refinement (tracks
+      // completed and merged, global bundle adjustment).
+      unrefined_.erase(scene.get());
+      scene = manager->Get(0);
+    }
+    TmrTaskReport task{
+        "complete model " + std::to_string(i),
+        before,
+        static_cast<int>(scene->NumRegImages()),
+        Since(start),
+        true,
+        std::to_string(scene->NumRegImages() - before) + " images added"};
+    record_(task);
+  }
+  SortBySize(scenes);
+}
+
+void SceneAssembler::RefineMergedScenes(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  const auto mapper = ColmapOptions(o_.mapper, num_threads_);
+  for (const auto& scene : scenes) {
+    if (!unrefined_.count(scene.get())) continue;
+    const auto start = Clock::now();
+    RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
+    const int images = static_cast<int>(scene->NumRegImages());
+    record_({"refine merged model", images, images, Since(start), true,
+             "tracks merged, global bundle adjustment"});
+  }
+  unrefined_.clear();
+}
+
+// Images that no model holds yet get COLMAP's mapper from scratch, as
+// `colmap mapper` would on them alone (several models if need be): parts
+// of the scene that no kernel reached, or kernels COLMAP could only partly
+// reconstruct. Returns whether it added a model.
+bool SceneAssembler::ReconstructLeftovers(
+    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
+  const auto start = Clock::now();
+  const auto held = HeldImageNames(*scenes);
+  auto options = std::make_shared<colmap::IncrementalMapperOptions>(
+      ColmapOptions(o_.mapper, num_threads_));
+  options->extract_colors = false;
+  for (const std::string& name : image_names_) {
+    if (!held.count(name)) options->image_names.insert(name);
+  }
+  const int leftovers = static_cast<int>(options->image_names.size());
+  if (leftovers < 2) return false;
+  auto manager = std::make_shared<colmap::ReconstructionManager>();
+  colmap::IncrementalMapperController controller(options, "", merge_database_,
+                                                 manager);
+  controller.Run();
+  int registered = 0;
+  for (size_t i = 0; i < manager->Size(); ++i) {
+    registered += static_cast<int>(manager->Get(i)->NumRegImages());
+    scenes->push_back(manager->Get(i));
+  }
+  record_({"images left over", leftovers, registered, Since(start), true,
+           std::to_string(manager->Size()) + " new models"});
+  SortBySize(scenes);
+  return manager->Size() > 0;
+}
+
+}  // namespace tmr

@@ -1,0 +1,70 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <colmap/scene/database_cache.h>
+#include <colmap/scene/reconstruction.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "tmr/colmap/tmr_mapper.h"
+
+namespace tmr {
+
+// Orders models by registered images, largest first.
+void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models);
+
+// The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
+// image-cluster models become scene models by the shared-track merge rule
+// (sfm/model_merging.h), then COLMAP's mapper completes them with the images
+// no model holds, and maps from scratch what is still left.
+class SceneAssembler {
+ public:
+  // `merge_database`: a task database of all images (COLMAP's controller
+  // reads a path); `cache`: its correspondences, loaded once; `record`
+  // receives every step for the report.
+  SceneAssembler(const TmrMapperOptions& options,
+                 std::shared_ptr<const colmap::DatabaseCache> cache,
+                 std::string merge_database,
+                 std::vector<std::string> image_names, int num_threads,
+                 std::function<void(const TmrTaskReport&)> record);
+
+  // Each model joins the first (largest) scene it aligns with, until nothing
+  // merges; returns the scene models, largest first. Merged scenes are not
+  // refined here: with verified similarities the parts fit well enough to
+  // merge further, and one global adjustment at the end (by the completion's
+  // mapper or RefineMergedScenes) costs far less than one per merge.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
+      std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
+
+  // COLMAP's mapper continues each scene, largest first, with the images no
+  // other scene holds.
+  void CompleteScenes(
+      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
+
+  // Refines the merged scenes that no completion has refined since their
+  // last merge: tracks completed and merged over the full correspondence
+  // graph, global bundle adjustment, point filtering.
+  void RefineMergedScenes(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+
+  // Maps the images no scene holds from scratch (several models if need
+  // be) and adds the models; returns whether it added any.
+  bool ReconstructLeftovers(
+      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
+
+ private:
+  const TmrMapperOptions& o_;
+  std::shared_ptr<const colmap::DatabaseCache> cache_;
+  std::string merge_database_;
+  std::vector<std::string> image_names_;
+  int num_threads_;
+  std::function<void(const TmrTaskReport&)> record_;
+  // Scenes merged since their last global adjustment.
+  mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
+};
+
+}  // namespace tmr
