@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -44,6 +45,7 @@ void TaskGraph::Run(int num_workers) {
   std::mutex mutex;
   std::condition_variable changed;
   int running = 0, finished = 0;
+  std::exception_ptr failure;
   auto worker = [&] {
     std::unique_lock<std::mutex> lock(mutex);
     while (true) {
@@ -61,7 +63,14 @@ void TaskGraph::Run(int num_workers) {
       const int share = static_cast<int>(ready.size()) + running;
       const int threads = std::max(1, num_workers / std::max(1, share));
       lock.unlock();
-      tasks_[t].run(threads);
+      try {
+        tasks_[t].run(threads);
+      } catch (...) {
+        // COLMAP reports some failures by throwing; keep the first, let the
+        // other workers finish, and rethrow once all have joined.
+        std::lock_guard<std::mutex> guard(mutex);
+        if (!failure) failure = std::current_exception();
+      }
       lock.lock();
       --running;
       ++finished;
@@ -74,6 +83,7 @@ void TaskGraph::Run(int num_workers) {
   for (int w = 0; w < std::min(num_workers, std::max(1, n)); ++w)
     threads.emplace_back(worker);
   for (std::thread& thread : threads) thread.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace tmr

@@ -38,7 +38,8 @@ class TaskGraph {
   int NumTasks() const { return static_cast<int>(tasks_.size()); }
 
   // Runs every task once, on `num_workers` threads, and returns when all
-  // have finished. Tasks must not throw.
+  // have finished. If a task throws, its dependents still run (they see
+  // its missing output); the first exception is rethrown at the end.
   void Run(int num_workers);
 
  private:

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <mutex>
+#include <stdexcept>
 
 namespace tmr {
 namespace {
@@ -82,6 +83,18 @@ TEST(TaskGraph, ConcurrentTasksShareTheWorkers) {
   // possibly the last, which may find itself alone.
   EXPECT_GE(total, 4);
   EXPECT_LE(total, 5);
+}
+
+TEST(TaskGraph, AThrowingTaskEndsTheRunWithItsException) {
+  TaskGraph graph;
+  std::atomic<int> ran{0};
+  const int failing = graph.Add({"failing", 1.0, {}, [](int) {
+                                   throw std::runtime_error("task failed");
+                                 }});
+  graph.Add({"after", 1.0, {failing}, [&](int) { ++ran; }});
+  graph.Add({"other", 1.0, {}, [&](int) { ++ran; }});
+  EXPECT_THROW(graph.Run(2), std::runtime_error);
+  EXPECT_EQ(ran, 2);
 }
 
 TEST(TaskGraph, EmptyGraphReturns) {
