@@ -5,13 +5,11 @@
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "tmr/colmap/synthetic_scene.h"
+#include "test_scene.h"
 
 namespace tmr {
 namespace {
@@ -21,18 +19,13 @@ namespace fs = std::filesystem;
 class ModelEvaluationTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // ctest runs the test cases as parallel processes: one folder each.
-    dir_ = fs::temp_directory_path() /
-           ("tmr_model_evaluation_test_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
     SyntheticSceneOptions options;
     options.cameras_per_place = 30;
     options.num_unlinked_places = 0;
     options.place_distance = 100;
     std::string error;
-    ASSERT_TRUE(WriteSyntheticScene(options, (dir_ / "database.db").string(),
-                                    (dir_ / "gt").string(), nullptr, &error))
-        << error;
+    dir_ = WriteTestScene("model_evaluation_test", options, &error);
+    ASSERT_FALSE(dir_.empty()) << error;
     gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
   }
   static void TearDownTestSuite() {

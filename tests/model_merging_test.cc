@@ -10,13 +10,11 @@
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 
 #include "evaluation/evaluate_reconstruction.h"
 #include "sfm/model_merging.h"
-#include "tmr/colmap/synthetic_scene.h"
+#include "test_scene.h"
 
 namespace tmr {
 namespace {
@@ -26,9 +24,6 @@ namespace fs = std::filesystem;
 class ModelMergingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() /
-           ("tmr_model_merging_test_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
     // One place of 30 photos and one that nothing links to.
     SyntheticSceneOptions options;
     options.num_places = 1;
@@ -36,9 +31,8 @@ class ModelMergingTest : public ::testing::Test {
     options.cameras_per_place = 30;
     options.place_distance = 100;
     std::string error;
-    ASSERT_TRUE(WriteSyntheticScene(options, (dir_ / "database.db").string(),
-                                    (dir_ / "gt").string(), nullptr, &error))
-        << error;
+    dir_ = WriteTestScene("model_merging_test", options, &error);
+    ASSERT_FALSE(dir_.empty()) << error;
     gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
     colmap::Database database((dir_ / "database.db").string());
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(

@@ -14,31 +14,41 @@ endfunction()
 # largest_model(EVAL_JSON PREFIX): reads a tmr_eval JSON report and sets, in
 # the caller's scope, PREFIX_images (reference images), PREFIX_models,
 # PREFIX_registered and PREFIX_rotation (median rotation error, degrees) of
-# the largest model, and PREFIX_wrong (number of models flagged as a wrong
-# merge).
+# the largest model, PREFIX_total (images registered over all models),
+# PREFIX_worst_rotation (the largest median rotation error of any model) and
+# PREFIX_wrong (number of models flagged as a wrong merge).
 function(largest_model eval_json prefix)
   file(READ ${eval_json} json)
   string(JSON reference GET "${json}" models 0 reference_images)
   string(JSON num_models LENGTH "${json}" models)
   set(registered 0)
   set(rotation 0)
+  set(total 0)
+  set(worst 0)
   set(wrong 0)
   math(EXPR last "${num_models} - 1")
   foreach(k RANGE ${last})
     string(JSON images GET "${json}" models ${k} registered_images)
     string(JSON flagged GET "${json}" models ${k} wrong_merge)
+    string(JSON median GET "${json}" models ${k} rotation_error_deg median)
+    math(EXPR total "${total} + ${images}")
+    if(median GREATER worst)
+      set(worst ${median})
+    endif()
     if(flagged)
       math(EXPR wrong "${wrong} + 1")
     endif()
     if(images GREATER registered)
       set(registered ${images})
-      string(JSON rotation GET "${json}" models ${k} rotation_error_deg median)
+      set(rotation ${median})
     endif()
   endforeach()
   set(${prefix}_images ${reference} PARENT_SCOPE)
   set(${prefix}_models ${num_models} PARENT_SCOPE)
   set(${prefix}_registered ${registered} PARENT_SCOPE)
   set(${prefix}_rotation ${rotation} PARENT_SCOPE)
+  set(${prefix}_total ${total} PARENT_SCOPE)
+  set(${prefix}_worst_rotation ${worst} PARENT_SCOPE)
   set(${prefix}_wrong ${wrong} PARENT_SCOPE)
   message(STATUS "${prefix}: ${num_models} models, largest ${registered} of "
                  "${reference} images, median rotation error ${rotation} deg, "

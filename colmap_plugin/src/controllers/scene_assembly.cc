@@ -14,10 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // Names of the images the models register, except model `skip`.
 std::unordered_set<std::string> HeldImageNames(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
@@ -87,7 +83,7 @@ SceneAssembler::MergeScenes(
           unrefined_.insert(scene.get());
           task.num_registered = static_cast<int>(scene->NumRegImages());
         }
-        task.seconds = Since(start);
+        task.seconds = SecondsSince(start);
         // Pairs with no track in common are no merge candidates.
         if (a.success || a.num_shared_tracks > 0) record_(task);
         if (a.success) {
@@ -140,7 +136,7 @@ void SceneAssembler::CompleteScenes(
         "complete model " + std::to_string(i),
         before,
         static_cast<int>(scene->NumRegImages()),
-        Since(start),
+        SecondsSince(start),
         true,
         std::to_string(scene->NumRegImages() - before) + " images added"};
     record_(task);
@@ -156,7 +152,7 @@ void SceneAssembler::RefineMergedScenes(
     const auto start = Clock::now();
     RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
     const int images = static_cast<int>(scene->NumRegImages());
-    record_({"refine merged model", images, images, Since(start), true,
+    record_({"refine merged model", images, images, SecondsSince(start), true,
              "tracks merged, global bundle adjustment"});
   }
   unrefined_.clear();
@@ -187,7 +183,7 @@ bool SceneAssembler::ReconstructLeftovers(
     registered += static_cast<int>(manager->Get(i)->NumRegImages());
     scenes->push_back(manager->Get(i));
   }
-  record_({"images left over", leftovers, registered, Since(start), true,
+  record_({"images left over", leftovers, registered, SecondsSince(start), true,
            std::to_string(manager->Size()) + " new models"});
   SortBySize(scenes);
   return manager->Size() > 0;

@@ -29,10 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 std::vector<uint32_t> Ids(const TmrTree& tree,
                           const std::vector<int>& vertices) {
   std::vector<uint32_t> ids;
@@ -60,7 +56,7 @@ class TmrMapperRun {
       return Fail("the database has no verified image pairs", error);
     tree_ = BuildTmrTree(graph, o_.tree);
     report_->num_images = graph.NumImages();
-    report_->partition_seconds = Since(start);
+    report_->partition_seconds = SecondsSince(start);
     // A killed run's task files are not reused (yet): start clean.
     fs::remove_all(work_);
     fs::create_directories(work_);
@@ -91,7 +87,7 @@ class TmrMapperRun {
     }
     assembler.RefineMergedScenes(scenes);
     if (!WriteModels(scenes, error)) return false;
-    report_->total_seconds = Since(start);
+    report_->total_seconds = SecondsSince(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
                         ReportJson(*report_));
     if (!o_.keep_work) fs::remove_all(work_);
@@ -122,7 +118,7 @@ class TmrMapperRun {
          << task.num_images << " images in " << task.seconds << " s"
          << (task.success ? "" : ", " + task.message);
     if (weight > 0 && done_weight_ < total_weight_) {
-      const double elapsed = Since(graph_start_);
+      const double elapsed = SecondsSince(graph_start_);
       line << "; ETA "
            << elapsed / done_weight_ * (total_weight_ - done_weight_) << " s";
     }
@@ -320,7 +316,7 @@ class TmrMapperRun {
     }
     Record({"merge cluster " + std::to_string(k),
             static_cast<int>(tree_.kernels[k].cluster_images.size()),
-            static_cast<int>(model->NumRegImages()), Since(start), true,
+            static_cast<int>(model->NumRegImages()), SecondsSince(start), true,
             std::to_string(merged) + " leaf models"});
     clusters_[k] = model;
   }

@@ -28,6 +28,11 @@ colmap::IncrementalMapperOptions ColmapOptions(
   return o;
 }
 
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 std::string ReportJson(const TmrMapperReport& r) {
   std::ostringstream out;
   out << "{\"num_images\": " << r.num_images

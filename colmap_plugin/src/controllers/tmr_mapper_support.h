@@ -5,6 +5,7 @@
 
 #include <colmap/controllers/incremental_mapper.h>
 
+#include <chrono>
 #include <functional>
 #include <string>
 
@@ -15,6 +16,9 @@ namespace tmr {
 // COLMAP's mapper options with tmr_mapper's pass-through values.
 colmap::IncrementalMapperOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads);
+
+// Seconds of wall time since `start`.
+double SecondsSince(std::chrono::steady_clock::time_point start);
 
 // report.json of a run.
 std::string ReportJson(const TmrMapperReport& report);

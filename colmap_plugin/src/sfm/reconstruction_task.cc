@@ -37,10 +37,12 @@ constexpr int kMinPartImages = 3;
 // which costs less than another attempt at the whole kernel.
 constexpr double kEnoughShare = 0.5;
 
-// The images of the task database that `model` does not register, mapped
-// from scratch; every model of at least kMinPartImages images is written.
+// The images of the task database (`images`) that `model` does not
+// register, mapped from scratch; every model of at least kMinPartImages
+// images is written.
 void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
                      const std::string& task_database,
+                     const std::vector<colmap::Image>& images,
                      const colmap::Reconstruction& model,
                      const std::string& output_model,
                      ReconstructionTaskResult* result) {
@@ -50,13 +52,10 @@ void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
   options->extract_colors = false;
   options->min_model_size = kMinPartImages;
   options->image_names.clear();
-  {
-    colmap::Database database(task_database);
-    for (const colmap::Image& image : database.ReadAllImages()) {
-      if (!model.ExistsImage(image.ImageId()) ||
-          !model.IsImageRegistered(image.ImageId()))
-        options->image_names.insert(image.Name());
-    }
+  for (const colmap::Image& image : images) {
+    if (!model.ExistsImage(image.ImageId()) ||
+        !model.IsImageRegistered(image.ImageId()))
+      options->image_names.insert(image.Name());
   }
   auto manager = std::make_shared<colmap::ReconstructionManager>();
   colmap::IncrementalMapperController controller(options, "", task_database,
@@ -82,10 +81,12 @@ ReconstructionTaskResult RunReconstructionTask(
     const std::string& output_model) {
   const auto start = std::chrono::steady_clock::now();
   ReconstructionTaskResult result;
+  std::vector<colmap::Image> images;
   {
     colmap::Database database(task_database);
-    result.num_images = static_cast<int>(database.NumImages());
+    images = database.ReadAllImages();
   }
+  result.num_images = static_cast<int>(images.size());
   // With a base model only one attempt makes sense; without, each initial
   // pair in turn and then COLMAP's own choice.
   std::vector<std::pair<int, int>> attempts;
@@ -133,7 +134,7 @@ ReconstructionTaskResult RunReconstructionTask(
   }
   if (result.success && base_model.empty() &&
       result.num_registered + kMinPartImages <= result.num_images) {
-    ReconstructRest(mapper_options, task_database, *best, output_model,
+    ReconstructRest(mapper_options, task_database, images, *best, output_model,
                     &result);
   }
   if (!result.success && result.message.empty())
