@@ -2,6 +2,7 @@
 #include "controllers/scene_assembly.h"
 
 #include <colmap/scene/reconstruction_manager.h>
+#include <colmap/sfm/incremental_mapper.h>
 
 #include <chrono>
 #include <unordered_set>
@@ -101,45 +102,52 @@ SceneAssembler::MergeScenes(
 
 // Registers the images that no model holds yet (kernel images the kernel
 // task could not register, leaves of failed leaf tasks, unclustered
-// images): COLMAP's mapper continues each scene model, largest first, over
-// all images that no other model holds.
+// images) into each scene model, largest first, as COLMAP's mapper
+// continues a model: next image by visible points, registration,
+// triangulation, local refinement. It works on the loaded correspondences;
+// the one global adjustment follows in RefineMergedScenes.
 void SceneAssembler::CompleteScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
-  auto mapper = ColmapOptions(o_.mapper, num_threads_);
-  mapper.multiple_models = false;
-  mapper.extract_colors = false;
-  const int n = static_cast<int>(scenes->size());
-  // Nothing to do (and no database to load) when every image is held.
+  // Nothing to do when every image is held.
   if (HeldImageNames(*scenes).size() >= image_names_.size()) return;
-  for (int i = 0; i < n; ++i) {
+  const auto colmap_options = ColmapOptions(o_.mapper, num_threads_);
+  const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
+  const auto triangulation = colmap_options.Triangulation();
+  const auto local_ba = colmap_options.LocalBundleAdjustment();
+  for (int i = 0; i < static_cast<int>(scenes->size()); ++i) {
     const auto start = Clock::now();
-    auto& scene = (*scenes)[i];
+    const auto& scene = (*scenes)[i];
     const int before = static_cast<int>(scene->NumRegImages());
-    auto options = std::make_shared<colmap::IncrementalMapperOptions>(mapper);
-    const auto held_elsewhere = HeldImageNames(*scenes, i);
-    for (const std::string& name : image_names_) {
-      if (!held_elsewhere.count(name)) options->image_names.insert(name);
+    std::unordered_set<colmap::image_t> held_elsewhere;
+    for (const std::string& name : HeldImageNames(*scenes, i)) {
+      if (const colmap::Image* image = cache_->FindImageWithName(name))
+        held_elsewhere.insert(image->ImageId());
     }
-    auto manager = std::make_shared<colmap::ReconstructionManager>();
-    *manager->Get(manager->Add()) = *scene;
-    colmap::IncrementalMapperController controller(options, "", merge_database_,
-                                                   manager);
-    controller.Run();
-    if (manager->Size() > 0 &&
-        manager->Get(0)->NumRegImages() > scene->NumRegImages()) {
-      // The controller ended with its iterative global refinement (tracks
-      // completed and merged, global bundle adjustment).
-      unrefined_.erase(scene.get());
-      scene = manager->Get(0);
+    colmap::IncrementalMapper mapper(cache_);
+    mapper.BeginReconstruction(scene);
+    // COLMAP caps the attempts per image (Mapper.max_reg_trials), so the
+    // loop ends when no candidate is left.
+    bool registered = true;
+    while (registered) {
+      registered = false;
+      for (const colmap::image_t id : mapper.FindNextImages(options)) {
+        if (held_elsewhere.count(id) || !mapper.RegisterNextImage(options, id))
+          continue;
+        mapper.TriangulateImage(triangulation, id);
+        mapper.IterativeLocalRefinement(
+            colmap_options.ba_local_max_refinements,
+            colmap_options.ba_local_max_refinement_change, options, local_ba,
+            triangulation, id);
+        registered = true;
+        break;
+      }
     }
-    TmrTaskReport task{
-        "complete model " + std::to_string(i),
-        before,
-        static_cast<int>(scene->NumRegImages()),
-        SecondsSince(start),
-        true,
-        std::to_string(scene->NumRegImages() - before) + " images added"};
-    record_(task);
+    mapper.EndReconstruction(/*discard=*/false);
+    const int added = static_cast<int>(scene->NumRegImages()) - before;
+    if (added > 0) unrefined_.insert(scene.get());
+    record_({"complete model " + std::to_string(i), before,
+             static_cast<int>(scene->NumRegImages()), SecondsSince(start),
+             true, std::to_string(added) + " images added"});
   }
   SortBySize(scenes);
 }

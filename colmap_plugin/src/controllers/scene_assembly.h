@@ -35,18 +35,20 @@ class SceneAssembler {
   // Each model joins the first (largest) scene it aligns with, until nothing
   // merges; returns the scene models, largest first. Merged scenes are not
   // refined here: with verified similarities the parts fit well enough to
-  // merge further, and one global adjustment at the end (by the completion's
-  // mapper or RefineMergedScenes) costs far less than one per merge.
+  // merge further, and one global adjustment at the end (RefineMergedScenes)
+  // costs far less than one per merge.
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
 
-  // COLMAP's mapper continues each scene, largest first, with the images no
-  // other scene holds.
+  // COLMAP's incremental mapper continues each scene, largest first, with
+  // the images no other scene holds (registration and local refinement on
+  // the loaded correspondences; the scene is then left to
+  // RefineMergedScenes).
   void CompleteScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
 
-  // Refines the merged scenes that no completion has refined since their
-  // last merge: tracks completed and merged over the full correspondence
+  // Refines the scenes merged or completed since their last global
+  // adjustment: tracks completed and merged over the full correspondence
   // graph, global bundle adjustment, point filtering.
   void RefineMergedScenes(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
@@ -63,7 +65,7 @@ class SceneAssembler {
   std::vector<std::string> image_names_;
   int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
-  // Scenes merged since their last global adjustment.
+  // Scenes merged or completed since their last global adjustment.
   mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
 };
 
