@@ -15,7 +15,8 @@ endfunction()
 # the caller's scope, PREFIX_images (reference images), PREFIX_models,
 # PREFIX_registered and PREFIX_rotation (median rotation error, degrees) of
 # the largest model, PREFIX_total (images registered over all models),
-# PREFIX_worst_rotation (the largest median rotation error of any model) and
+# PREFIX_worst_rotation (the largest median rotation error of any model),
+# PREFIX_reprojection (mean reprojection error of the largest model, px) and
 # PREFIX_wrong (number of models flagged as a wrong merge).
 function(largest_model eval_json prefix)
   file(READ ${eval_json} json)
@@ -41,6 +42,7 @@ function(largest_model eval_json prefix)
     if(images GREATER registered)
       set(registered ${images})
       set(rotation ${median})
+      string(JSON reprojection GET "${json}" models ${k} mean_reprojection_error_px)
     endif()
   endforeach()
   set(${prefix}_images ${reference} PARENT_SCOPE)
@@ -50,7 +52,19 @@ function(largest_model eval_json prefix)
   set(${prefix}_total ${total} PARENT_SCOPE)
   set(${prefix}_worst_rotation ${worst} PARENT_SCOPE)
   set(${prefix}_wrong ${wrong} PARENT_SCOPE)
+  set(${prefix}_reprojection ${reprojection} PARENT_SCOPE)
   message(STATUS "${prefix}: ${num_models} models, largest ${registered} of "
                  "${reference} images, median rotation error ${rotation} deg, "
                  "${wrong} wrong merges")
 endfunction()
+
+# micro(OUT VALUE): OUT = VALUE x 10^6 as an integer (CMake has no floating
+# point; compare decimals so).
+macro(micro out value)
+  if(NOT "${value}" MATCHES "^([0-9]+)(\\.([0-9]*))?$")
+    message(FATAL_ERROR "not a plain decimal number: ${value}")
+  endif()
+  set(whole ${CMAKE_MATCH_1})
+  string(SUBSTRING "${CMAKE_MATCH_3}000000" 0 6 fraction)
+  math(EXPR ${out} "${whole}0 * 100000 + 1${fraction} - 1000000")
+endmacro()

@@ -14,8 +14,10 @@
 
 #include "tmr/colmap/model_evaluation.h"
 
-namespace fs = std::filesystem;
+#include "top_view_picture.h"
 #include "tmr_options.h"
+
+namespace fs = std::filesystem;
 
 namespace po = boost::program_options;
 
@@ -51,7 +53,7 @@ std::vector<std::string> ExpandModels(const std::vector<std::string>& paths) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string reference, json_path;
+  std::string reference, json_path, top_view;
   std::vector<std::string> model_args;
   tmr::ModelEvaluationOptions options;
   po::options_description desc(
@@ -62,6 +64,9 @@ int main(int argc, char** argv) {
       "model", po::value(&model_args)->multitoken()->required(),
       "models to score (a folder of numbered models counts as all of them)")(
       "output_json", po::value(&json_path), "also write the scores as JSON")(
+      "top_view", po::value(&top_view),
+      "also draw the aligned camera centres of every model over the "
+      "reference's (PNG)")(
       "inlier_threshold",
       po::value(&options.inlier_threshold)
           ->default_value(options.inlier_threshold),
@@ -97,6 +102,27 @@ int main(int argc, char** argv) {
     return 1;
   }
   tmr::PrintEvaluationTable(evaluations, std::cout);
+  if (!top_view.empty()) {
+    std::vector<tmr::CentreSet> sets;
+    for (size_t i = 0; i < evaluations.size(); ++i) {
+      const auto& e = evaluations[i];
+      sets.push_back({"model " + std::to_string(i) + ": " +
+                          std::to_string(e.num_registered_images) + " images" +
+                          (e.aligned ? "" : " (not aligned, not drawn)") +
+                          (e.wrong_merge ? " (wrong merge)" : ""),
+                      e.aligned_centres});
+    }
+    try {
+      if (!tmr::DrawTopView(tmr::ReadCameraCentres(reference), sets,
+                            top_view)) {
+        std::cerr << "tmr_eval: error: cannot draw '" << top_view << "'\n";
+        return 1;
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "tmr_eval: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (!json_path.empty()) {
     std::ofstream out(json_path);
     tmr::WriteEvaluationJson(evaluations, reference, out);

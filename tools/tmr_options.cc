@@ -14,9 +14,15 @@ namespace po = boost::program_options;
 std::optional<int> ParseCommandLine(const std::string& tool, int argc,
                                     char** argv,
                                     const po::options_description& desc,
-                                    po::variables_map* vm) {
+                                    po::variables_map* vm,
+                                    const po::positional_options_description&
+                                        positional) {
   try {
-    po::store(po::parse_command_line(argc, argv, desc), *vm);
+    po::store(po::command_line_parser(argc, argv)
+                  .options(desc)
+                  .positional(positional)
+                  .run(),
+              *vm);
     if (vm->count("help")) {
       std::cout << desc << "\n";
       return 0;

@@ -15,10 +15,13 @@ namespace tmr {
 // Parses the command line of `tool`. Returns nothing when the tool should
 // go on, or its exit code: 0 after printing --help, 2 after printing one
 // "TOOL: error: ..." line for bad options.
+// `positional` names the options that plain arguments fill, in order.
 std::optional<int> ParseCommandLine(
     const std::string& tool, int argc, char** argv,
     const boost::program_options::options_description& desc,
-    boost::program_options::variables_map* vm);
+    boost::program_options::variables_map* vm,
+    const boost::program_options::positional_options_description& positional =
+        {});
 
 // Registers --NAME with the current value of *value as its default.
 template <typename T>

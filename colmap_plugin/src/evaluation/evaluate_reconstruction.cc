@@ -149,6 +149,10 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
       displaced_reference.push_back(reference_centres[k]);
     }
   }
+  for (const colmap::image_t id : model.RegImageIds()) {
+    const Eigen::Vector3d c = ref_from_model * model.Image(id).ProjectionCenter();
+    eval.aligned_centres.push_back({c.x(), c.y(), c.z()});
+  }
   eval.rotation_error_deg = Statistics(rotation);
   eval.position_error = Statistics(position);
   eval.num_displaced_images = static_cast<int>(displaced_model.size());
@@ -177,10 +181,23 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
   return eval;
 }
 
+std::vector<std::array<double, 3>> ReadCameraCentres(
+    const std::string& model_path) {
+  const colmap::Reconstruction model = ReadModel(model_path);
+  std::vector<std::array<double, 3>> centres;
+  for (const colmap::image_t id : model.RegImageIds()) {
+    const Eigen::Vector3d c = model.Image(id).ProjectionCenter();
+    centres.push_back({c.x(), c.y(), c.z()});
+  }
+  return centres;
+}
+
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options) {
-  const colmap::Reconstruction reference = ReadModel(reference_path);
+  const colmap::Reconstruction reference =
+      reference_path.empty() ? colmap::Reconstruction()
+                             : ReadModel(reference_path);
   const colmap::Reconstruction model = ReadModel(model_path);
   ModelEvaluation eval = EvaluateReconstruction(reference, model, options);
   eval.model_path = model_path;

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/model_merging.h"
 
+#include <colmap/estimators/bundle_adjustment.h>
 #include <colmap/estimators/similarity_transform.h>
 #include <colmap/math/random.h>
 #include <colmap/optim/loransac.h>
@@ -200,6 +201,35 @@ void AppendReconstruction(const colmap::Reconstruction& source,
   }
 }
 
+bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
+                        colmap::IncrementalMapper* mapper) {
+  colmap::Reconstruction& model = *mapper->Reconstruction();
+  const std::vector<colmap::image_t>& images = model.RegImageIds();
+  if (images.size() < 2) return false;
+  mapper->ObservationManager().FilterObservationsWithNegativeDepth();
+  colmap::BundleAdjustmentConfig config;
+  for (const colmap::image_t id : images) config.AddImage(id);
+  config.SetConstantCamPose(images[0]);
+  config.SetConstantCamPositions(images[1], {0});
+  const colmap::BundleAdjustmentOptions options =
+      mapper_options.GlobalBundleAdjustment();
+  colmap::BundleAdjuster adjuster(options, config);
+  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
+  adjuster.SetUpProblem(&model, loss.get());
+  if (adjuster.Problem()->NumResiduals() == 0) return false;
+  ceres::Solver::Options solver =
+      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
+  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
+      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
+    solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  }
+  solver.function_tolerance = 1e-6;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, adjuster.Problem().get(), &summary);
+  VLOG(1) << summary.BriefReport();
+  return true;
+}
+
 void RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
@@ -210,10 +240,7 @@ void RefineMergedModel(
   const auto triangulation = mapper_options.Triangulation();
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
-  if (global_bundle_adjustment) {
-    mapper.AdjustGlobalBundle(mapper_options.Mapper(),
-                              mapper_options.GlobalBundleAdjustment());
-  }
+  if (global_bundle_adjustment) AdjustMergedBundle(mapper_options, &mapper);
   mapper.FilterPoints(mapper_options.Mapper());
   mapper.EndReconstruction(/*discard=*/false);
 }

@@ -65,9 +65,22 @@ void AppendReconstruction(const colmap::Reconstruction& source,
                           const colmap::Sim3d& target_from_source,
                           colmap::Reconstruction* target);
 
+// Global bundle adjustment of the mapper's model with COLMAP's residuals,
+// loss and gauge (IncrementalMapper::AdjustGlobalBundle), but a direct
+// sparse Schur solver at every size and Ceres' convergence test (relative
+// cost change below 1e-6). COLMAP switches to an iterative solver above
+// 1,000 images and runs its global adjustments to the iteration limit
+// (function tolerance 0); on a merged 1,087-image city that took 648 s and
+// left a median rotation error of 0.039 deg against the stock mapper's
+// 0.017. Returns false when there was nothing to adjust.
+bool AdjustMergedBundle(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    colmap::IncrementalMapper* mapper);
+
 // Re-links tracks across the merged parts (complete and merge tracks over
-// the full correspondence graph), then global bundle adjustment and point
-// filtering, as COLMAP's mapper does after registering images.
+// the full correspondence graph), then global bundle adjustment
+// (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
+// registering images.
 void RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -56,13 +57,22 @@ struct ModelEvaluation {
   // share of the scene scale, and its rotation against the main part.
   double displacement = 0.0;
   double displacement_rotation_deg = 0.0;
+  // Camera centres of the model's registered images in the reference's
+  // frame (empty when not aligned).
+  std::vector<std::array<double, 3>> aligned_centres;
 };
 
 // Reads the reference and the model (COLMAP models, binary or text) and
-// scores the model. Throws std::runtime_error for unreadable models.
+// scores the model; with an empty reference_path only the model's own
+// statistics (images, points, reprojection error, tracks). Throws std::runtime_error for unreadable models.
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options);
+
+// Camera centres of the registered images of a COLMAP model. Throws
+// std::runtime_error for an unreadable model.
+std::vector<std::array<double, 3>> ReadCameraCentres(
+    const std::string& model_path);
 
 void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
                           std::ostream& out);

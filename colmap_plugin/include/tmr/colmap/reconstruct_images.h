@@ -1,0 +1,64 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tmr/colmap/model_evaluation.h"
+#include "tmr/colmap/tmr_mapper.h"
+
+namespace tmr {
+
+// From a folder of photos to models: COLMAP's feature extraction (CPU
+// SIFT), a COLMAP matcher, then tmr_mapper. The COLMAP options keep
+// COLMAP's names and defaults.
+struct ReconstructImagesOptions {
+  std::string image_path;      // photos (JPEG, PNG, ...), read-only
+  std::string workspace_path;  // database.db, sparse/0, 1, ..., summary.txt
+  // "exhaustive", "sequential" (photos in file-name order, as from a video
+  // or a walk), "spatial" (by EXIF GPS) or "auto": exhaustive up to
+  // max_exhaustive_images photos, sequential above.
+  std::string matcher = "auto";
+  int max_exhaustive_images = 500;
+  std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
+  bool single_camera = false;   // --ImageReader.single_camera
+  int max_image_size = 3200;    // --SiftExtraction.max_image_size
+  int max_num_features = 8192;  // --SiftExtraction.max_num_features
+  bool guided_matching = false;  // --SiftMatching.guided_matching
+  int sequential_overlap = 10;   // --SequentialMatching.overlap
+  int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
+  // Threads of every stage (-1: all cores); mapper.num_threads follows it.
+  int num_threads = -1;
+  // database_path, output_path and image_path are set by the run.
+  TmrMapperOptions mapper;
+
+  bool Check(std::string* error = nullptr) const;
+};
+
+struct ReconstructImagesReport {
+  int num_photos = 0;         // image files found in image_path
+  int num_images = 0;         // images with features in the database
+  int num_verified_pairs = 0;  // pairs with verified two-view geometry
+  std::string matcher;        // the matcher that ran
+  double extraction_seconds = 0.0;
+  double matching_seconds = 0.0;
+  TmrMapperReport mapper;
+  std::vector<ModelEvaluation> models;  // statistics of sparse/0, 1, ...
+};
+
+// Runs the three stages into options.workspace_path. A rerun on the same
+// workspace reuses the features and matches already in its database (COLMAP
+// skips them) and maps again. `progress` receives one line per step and,
+// during extraction and matching, one about every ten seconds. Returns
+// false with one reason in `error`.
+bool RunReconstructImages(
+    const ReconstructImagesOptions& options, ReconstructImagesReport* report,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress = nullptr);
+
+// The summary written to workspace_path/summary.txt: the stages with their
+// times, then one line per model.
+std::string ReconstructImagesSummary(const ReconstructImagesReport& report);
+
+}  // namespace tmr

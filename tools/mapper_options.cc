@@ -1,0 +1,101 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "mapper_options.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "partition_picture.h"
+#include "tmr_options.h"
+
+namespace tmr {
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+
+void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
+  auto add = [desc](const char* name, auto* value, const char* help) {
+    AddOption(desc, name, value, help);
+  };
+  add("Mapper.num_threads", &o->num_threads, "threads (-1: all cores)");
+  add("Mapper.min_num_matches", &o->mapper.min_num_matches,
+      "inliers for a pair to count");
+  add("Mapper.ignore_watermarks", &o->mapper.ignore_watermarks,
+      "ignore watermark pairs");
+  add("Mapper.init_min_num_inliers", &o->mapper.init_min_num_inliers,
+      "initial pair inliers");
+  add("Mapper.abs_pose_min_num_inliers", &o->mapper.abs_pose_min_num_inliers,
+      "PnP inliers");
+  add("Mapper.filter_max_reproj_error", &o->mapper.filter_max_reproj_error,
+      "max reprojection error");
+  add("Mapper.tri_min_angle", &o->mapper.tri_min_angle,
+      "min triangulation angle");
+  add("Mapper.ba_refine_focal_length", &o->mapper.ba_refine_focal_length,
+      "refine focal lengths");
+  add("Mapper.ba_refine_principal_point", &o->mapper.ba_refine_principal_point,
+      "refine principal points");
+  add("Mapper.ba_refine_extra_params", &o->mapper.ba_refine_extra_params,
+      "refine distortion");
+  add("Mapper.ba_global_max_num_iterations",
+      &o->mapper.ba_global_max_num_iterations, "global BA iterations");
+  add("Tmr.fix_base_in_leaves", &o->fix_base_in_leaves,
+      "keep kernel poses fixed in leaf tasks");
+  add("Tmr.merge_min_shared_tracks", &o->merge_min_shared_tracks,
+      "tau of the merge rule");
+  add("Tmr.refine_merged_models", &o->refine_merged_models,
+      "global bundle adjustment after merges");
+  add("Tmr.complete_models", &o->complete_models,
+      "finally register images no model holds");
+  add("Tmr.keep_work", &o->keep_work,
+      "keep task databases and models in OUT/.tmr_work");
+  AddTmrTreeOptions(desc, &o->tree);
+}
+
+std::string ProjectIni(const po::options_description& desc,
+                       const po::variables_map& vm) {
+  std::ostringstream ini;
+  for (const auto& option : desc.options()) {
+    const std::string name = option->long_name();
+    if (name == "help" || !vm.count(name)) continue;
+    const auto& value = vm[name].value();
+    ini << name << "=";
+    if (auto* s = boost::any_cast<std::string>(&value))
+      ini << *s;
+    else if (auto* i = boost::any_cast<int>(&value))
+      ini << *i;
+    else if (auto* d = boost::any_cast<double>(&value))
+      ini << *d;
+    else if (auto* b = boost::any_cast<bool>(&value))
+      ini << (*b ? 1 : 0);
+    else if (auto* u = boost::any_cast<uint64_t>(&value))
+      ini << *u;
+    ini << "\n";
+  }
+  return ini.str();
+}
+
+void DrawMapperPartitionPicture(const TmrMapperOptions& o) {
+  const MatchGraph graph = ReadMatchGraph(o.database_path, o.match_graph);
+  std::vector<std::string> names;
+  for (const auto& image : graph.images) names.push_back(image.name);
+  std::ifstream tree_file(fs::path(o.output_path) / "tree.json");
+  const TmrTree tree = ReadTmrTreeJson(tree_file, names);
+  DrawPartitionPicture(BuildSimilarityGraph(graph), tree,
+                       (fs::path(o.output_path) / "partition.png").string());
+}
+
+std::function<void(const std::string&)> TimedProgressLines() {
+  const auto start = std::chrono::steady_clock::now();
+  return [start](const std::string& line) {
+    const double t = std::chrono::duration<double>(
+                         std::chrono::steady_clock::now() - start)
+                         .count();
+    std::cout << "[tmr " << std::fixed << std::setprecision(1) << std::setw(7)
+              << t << " s] " << line << std::endl;
+  };
+}
+
+}  // namespace tmr

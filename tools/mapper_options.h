@@ -1,0 +1,31 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// Command-line options and outputs shared by tmr_mapper and tmr_reconstruct.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <functional>
+#include <string>
+
+#include "tmr/colmap/tmr_mapper.h"
+
+namespace tmr {
+
+// Registers COLMAP's --Mapper.* pass-through options, tmr_mapper's --Tmr.*
+// options and the TMR-tree's --Tmr.* options, with their defaults.
+void AddTmrMapperOptions(boost::program_options::options_description* desc,
+                         TmrMapperOptions* options);
+
+// project.ini as COLMAP writes it: one `name=value` line per option given
+// or defaulted (not --help).
+std::string ProjectIni(const boost::program_options::options_description& desc,
+                       const boost::program_options::variables_map& vm);
+
+// Draws output_path/partition.png from output_path/tree.json and the
+// database's similarity graph. Throws on unreadable input.
+void DrawMapperPartitionPicture(const TmrMapperOptions& options);
+
+// Prints each progress line to stdout as "[tmr    12.3 s] line", timed
+// from the call.
+std::function<void(const std::string&)> TimedProgressLines();
+
+}  // namespace tmr

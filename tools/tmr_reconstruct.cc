@@ -1,0 +1,89 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// tmr_reconstruct IMAGES OUT [options]: from a folder of photos to models.
+// COLMAP's feature extraction (CPU SIFT) and matching into OUT/database.db,
+// then tmr_mapper into OUT/sparse; OUT/summary.txt sums it up. A rerun
+// reuses the features and matches already in OUT/database.db.
+#include <boost/program_options.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+#include "mapper_options.h"
+#include "tmr/colmap/reconstruct_images.h"
+#include "tmr/io/atomic_file.h"
+#include "tmr_options.h"
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+
+int main(int argc, char** argv) {
+  tmr::ReconstructImagesOptions o;
+  o.mapper.tree.kernels.kernel_size_floor = 30;  // as tmr_mapper
+  bool verbose = false;
+  po::options_description desc(
+      "tmr_reconstruct IMAGES OUT [options]: COLMAP feature extraction and "
+      "matching, then tmr_mapper");
+  auto add = [&desc](const char* name, auto* value, const char* help) {
+    tmr::AddOption(&desc, name, value, help);
+  };
+  desc.add_options()("help,h", "print this help")(
+      "image_path", po::value(&o.image_path)->required(),
+      "folder of photos (JPEG, PNG, ...), read-only")(
+      "workspace_path", po::value(&o.workspace_path)->required(),
+      "output: database.db, sparse/0, 1, ..., summary.txt");
+  add("verbose", &verbose, "show COLMAP's own log");
+  add("num_threads", &o.num_threads, "threads of every stage (-1: all cores)");
+  add("matcher", &o.matcher,
+      "auto | exhaustive | sequential (file-name order) | spatial (EXIF GPS)");
+  add("max_exhaustive_images", &o.max_exhaustive_images,
+      "auto: exhaustive up to this many images, sequential above");
+  add("ImageReader.camera_model", &o.camera_model, "COLMAP camera model");
+  add("ImageReader.single_camera", &o.single_camera,
+      "one camera for all photos");
+  add("SiftExtraction.max_image_size", &o.max_image_size,
+      "photos are downscaled to this size for SIFT");
+  add("SiftExtraction.max_num_features", &o.max_num_features,
+      "SIFT features per photo");
+  add("SiftMatching.guided_matching", &o.guided_matching,
+      "guided matching after verification");
+  add("SequentialMatching.overlap", &o.sequential_overlap,
+      "neighbours each photo is matched with (sequential)");
+  add("SpatialMatching.max_num_neighbors", &o.spatial_max_num_neighbors,
+      "GPS neighbours each photo is matched with (spatial)");
+  tmr::AddTmrMapperOptions(&desc, &o.mapper);
+  po::positional_options_description positional;
+  positional.add("image_path", 1).add("workspace_path", 1);
+  po::variables_map vm;
+  if (const auto exit_code = tmr::ParseCommandLine(
+          "tmr_reconstruct", argc, argv, desc, &vm, positional)) {
+    return *exit_code;
+  }
+  // --Mapper.num_threads stays in step with --num_threads.
+  if (vm["Mapper.num_threads"].defaulted())
+    o.mapper.num_threads = o.num_threads;
+  std::string error;
+  if (!o.Check(&error)) {
+    std::cerr << "tmr_reconstruct: error: " << error << "\n";
+    return 2;
+  }
+  tmr::ConfigureColmapLogging(argv[0], verbose);
+  tmr::ReconstructImagesReport report;
+  try {
+    if (!tmr::RunReconstructImages(o, &report, &error,
+                                   tmr::TimedProgressLines())) {
+      std::cerr << "tmr_reconstruct: error: " << error << "\n";
+      return 1;
+    }
+    tmr::TmrMapperOptions mapper = o.mapper;
+    mapper.database_path = (fs::path(o.workspace_path) / "database.db").string();
+    mapper.output_path = (fs::path(o.workspace_path) / "sparse").string();
+    tmr::WriteFileAtomically((fs::path(mapper.output_path) / "project.ini").string(),
+                             tmr::ProjectIni(desc, vm));
+    tmr::DrawMapperPartitionPicture(mapper);
+  } catch (const std::exception& e) {
+    std::cerr << "tmr_reconstruct: error: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << tmr::ReconstructImagesSummary(report);
+  return 0;
+}
