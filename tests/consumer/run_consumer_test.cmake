@@ -13,6 +13,8 @@ run(${CMAKE_COMMAND} --build ${WORK_DIR}/build --parallel 2)
 run(${WORK_DIR}/build/partition_summary)
 if(EXISTS ${WORK_DIR}/build/synth_and_read)
   run(${WORK_DIR}/build/synth_and_read ${WORK_DIR}/consumer.db)
+  run(${WORK_DIR}/build/partition_database ${WORK_DIR}/consumer.db
+      ${WORK_DIR}/tree.json)
 else()
   message(STATUS "colmap_plugin not installed: only libtmr checked")
 endif()

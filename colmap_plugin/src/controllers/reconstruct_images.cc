@@ -236,7 +236,10 @@ bool RunReconstructImages(
       database, "SELECT COUNT(*) FROM two_view_geometries WHERE rows > 0"));
   if (report->num_verified_pairs < 1) {
     return fail("no image pair of '" + options.image_path +
-                "' has a verified geometry: the photos do not overlap");
+                "' has a verified geometry: the photos do not overlap" +
+                (report->matcher == "spatial"
+                     ? " (or have no GPS position for --matcher spatial)"
+                     : ""));
   }
   say("features in " + std::to_string(report->num_images) + " images, " +
       std::to_string(report->num_verified_pairs) + " verified pairs");
