@@ -90,9 +90,9 @@ void DrawMapperPartitionPicture(const TmrMapperOptions& o) {
 std::function<void(const std::string&)> TimedProgressLines() {
   const auto start = std::chrono::steady_clock::now();
   return [start](const std::string& line) {
-    const double t = std::chrono::duration<double>(
-                         std::chrono::steady_clock::now() - start)
-                         .count();
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
     std::cout << "[tmr " << std::fixed << std::setprecision(1) << std::setw(7)
               << t << " s] " << line << std::endl;
   };

@@ -14,8 +14,8 @@
 
 #include "tmr/colmap/model_evaluation.h"
 
-#include "top_view_picture.h"
 #include "tmr_options.h"
+#include "top_view_picture.h"
 
 namespace fs = std::filesystem;
 
@@ -66,11 +66,10 @@ int main(int argc, char** argv) {
       "output_json", po::value(&json_path), "also write the scores as JSON")(
       "top_view", po::value(&top_view),
       "also draw the aligned camera centres of every model over the "
-      "reference's (PNG)")(
-      "inlier_threshold",
-      po::value(&options.inlier_threshold)
-          ->default_value(options.inlier_threshold),
-      "sim3 RANSAC threshold (share of the scene scale)")(
+      "reference's (PNG)")("inlier_threshold",
+                           po::value(&options.inlier_threshold)
+                               ->default_value(options.inlier_threshold),
+                           "sim3 RANSAC threshold (share of the scene scale)")(
       "displaced_threshold",
       po::value(&options.displaced_threshold)
           ->default_value(options.displaced_threshold),

@@ -65,7 +65,6 @@ int main(int argc, char** argv) {
             << report.model_sizes.size() << " models (registered:";
   for (const int size : report.model_sizes) std::cout << " " << size;
   std::cout << ") in " << std::fixed << std::setprecision(1)
-            << report.total_seconds
-            << " s\n";
+            << report.total_seconds << " s\n";
   return 0;
 }

@@ -11,12 +11,10 @@ namespace tmr {
 
 namespace po = boost::program_options;
 
-std::optional<int> ParseCommandLine(const std::string& tool, int argc,
-                                    char** argv,
-                                    const po::options_description& desc,
-                                    po::variables_map* vm,
-                                    const po::positional_options_description&
-                                        positional) {
+std::optional<int> ParseCommandLine(
+    const std::string& tool, int argc, char** argv,
+    const po::options_description& desc, po::variables_map* vm,
+    const po::positional_options_description& positional) {
   try {
     po::store(po::command_line_parser(argc, argv)
                   .options(desc)

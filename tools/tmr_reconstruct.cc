@@ -75,10 +75,12 @@ int main(int argc, char** argv) {
       return 1;
     }
     tmr::TmrMapperOptions mapper = o.mapper;
-    mapper.database_path = (fs::path(o.workspace_path) / "database.db").string();
+    mapper.database_path =
+        (fs::path(o.workspace_path) / "database.db").string();
     mapper.output_path = (fs::path(o.workspace_path) / "sparse").string();
-    tmr::WriteFileAtomically((fs::path(mapper.output_path) / "project.ini").string(),
-                             tmr::ProjectIni(desc, vm));
+    tmr::WriteFileAtomically(
+        (fs::path(mapper.output_path) / "project.ini").string(),
+        tmr::ProjectIni(desc, vm));
     tmr::DrawMapperPartitionPicture(mapper);
   } catch (const std::exception& e) {
     std::cerr << "tmr_reconstruct: error: " << e.what() << "\n";

@@ -110,7 +110,7 @@ done
 gnuplot <<GP
 set terminal pngcairo size 1000,420 noenhanced
 set output 'docs/images/bench_mapper.png'
-set multiplot layout 1,2 title 'tmr_synth cities, ${THREADS} threads, same machine and run'
+set multiplot layout 1,2 title 'tmr_synth cities, ${THREADS} threads, same machine, one tool at a time'
 set key top left
 set grid
 set xlabel 'images'

@@ -7,10 +7,10 @@
 #   sets:       every set: tmr_reconstruct (features, exhaustive matching,
 #               tmr_mapper), then both mappers timed on its database; scored
 #               against gt/colmap_text where the set has it.
-#   weak_links: middlebury_templeRing (47 photos on a ring) cut open into a
-#               sequence; a middle stretch removed (two unlinked parts), then
-#               thinned instead (weakly linked). Top views per tool in
-#               docs/images/real_*.png.
+#   weak_links: middlebury_templeRing (47 photos on a ring): two arcs with
+#               the photos between them removed (two unlinked parts), then
+#               one of the gaps thinned instead (weakly linked). Top views
+#               per tool in docs/images/real_*.png.
 # Environment: DATA (default ../shared/data), THREADS (default 2).
 # Results: out/bench_real/results.csv and a markdown table on stdout.
 set -euo pipefail
@@ -89,18 +89,19 @@ if [[ "$WHAT" == sets || "$WHAT" == all ]]; then
   done
 fi
 if [[ "$WHAT" == weak_links || "$WHAT" == all ]]; then
-  # templeRing: 47 photos around the temple. Cutting out photos 44-47 and
-  # 1-3 opens the ring into a sequence (4..43); a middle stretch 21-27 is
-  # then removed (two parts, nothing links them) or thinned to every third
-  # photo (21, 24, 27: a weak link).
+  # templeRing: 47 photos on a ring around the temple, 7.7 degrees apart.
+  # Two arcs are kept, photos 4-15 and 28-39; the gaps between them (16-27
+  # and 40-3, about 90 degrees each) are removed ("removed": nothing links
+  # the arcs), or the gap 16-27 is thinned to every third photo ("thinned":
+  # 16, 19, 22, 25 form a weak link; the other gap stays removed).
   ring="$DATA/middlebury_templeRing"
   if [[ -d "$ring/images" ]]; then
     for variant in removed thinned; do
       sub="$OUT/templeRing_$variant.images"
       rm -rf "$sub"; mkdir -p "$sub"
-      for i in $(seq 4 43); do
-        if (( i >= 21 && i <= 27 )); then
-          [[ $variant == thinned && $(( (i - 21) % 3 )) == 0 ]] || continue
+      for i in $(seq 4 39); do
+        if (( i >= 16 && i <= 27 )); then
+          [[ $variant == thinned && $(( (i - 16) % 3 )) == 0 ]] || continue
         fi
         ln -s "$(realpath "$ring/images")/templeR$(printf %04d "$i").png" "$sub/"
       done

@@ -106,8 +106,9 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
   if (workspace_path.empty()) return fail("no workspace folder given");
   if (matcher != "auto" && matcher != "exhaustive" && matcher != "sequential" &&
       matcher != "spatial") {
-    return fail("--matcher must be auto, exhaustive, sequential or spatial, not '" +
-                matcher + "'");
+    return fail(
+        "--matcher must be auto, exhaustive, sequential or spatial, not '" +
+        matcher + "'");
   }
   if (max_exhaustive_images < 2)
     return fail("--max_exhaustive_images must be at least 2");
@@ -125,7 +126,8 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
     return fail("--num_threads must be positive or -1 (all cores)");
   // The paths the run sets.
   TmrMapperOptions run_mapper = mapper;
-  run_mapper.database_path = (fs::path(workspace_path) / "database.db").string();
+  run_mapper.database_path =
+      (fs::path(workspace_path) / "database.db").string();
   run_mapper.output_path = (fs::path(workspace_path) / "sparse").string();
   return run_mapper.Check(error);
 }
@@ -182,8 +184,8 @@ bool RunReconstructImages(
         report->num_photos, progress);
     report->extraction_seconds = SecondsSince(start);
   }
-  report->num_images = static_cast<int>(CountRows(
-      database, "SELECT COUNT(*) FROM descriptors WHERE rows > 0"));
+  report->num_images = static_cast<int>(
+      CountRows(database, "SELECT COUNT(*) FROM descriptors WHERE rows > 0"));
   if (report->num_images < 2) {
     return fail("features were found in " +
                 std::to_string(std::max(report->num_images, 0)) +
@@ -267,16 +269,17 @@ bool RunReconstructImages(
 std::string ReconstructImagesSummary(const ReconstructImagesReport& report) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(1);
-  out << "photos: " << report.num_photos << ", with features: "
-      << report.num_images << " (" << report.extraction_seconds << " s)\n"
+  out << "photos: " << report.num_photos
+      << ", with features: " << report.num_images << " ("
+      << report.extraction_seconds << " s)\n"
       << "verified pairs: " << report.num_verified_pairs << " ("
       << report.matcher << " matching, " << report.matching_seconds << " s)\n"
       << "models: " << report.models.size() << " ("
       << report.mapper.total_seconds << " s)\n";
   for (size_t i = 0; i < report.models.size(); ++i) {
     const ModelEvaluation& m = report.models[i];
-    out << "  sparse/" << i << ": " << m.num_registered_images
-        << " images, " << m.num_points3D << " points, mean reprojection error "
+    out << "  sparse/" << i << ": " << m.num_registered_images << " images, "
+        << m.num_points3D << " points, mean reprojection error "
         << std::setprecision(2) << m.mean_reprojection_error_px
         << " px, mean track length " << m.mean_track_length
         << std::setprecision(1) << "\n";

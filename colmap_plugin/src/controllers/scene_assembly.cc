@@ -146,8 +146,8 @@ void SceneAssembler::CompleteScenes(
     const int added = static_cast<int>(scene->NumRegImages()) - before;
     if (added > 0) unrefined_.insert(scene.get());
     record_({"complete model " + std::to_string(i), before,
-             static_cast<int>(scene->NumRegImages()), SecondsSince(start),
-             true, std::to_string(added) + " images added"});
+             static_cast<int>(scene->NumRegImages()), SecondsSince(start), true,
+             std::to_string(added) + " images added"});
   }
   SortBySize(scenes);
 }

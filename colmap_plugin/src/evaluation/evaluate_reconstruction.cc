@@ -150,7 +150,8 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
     }
   }
   for (const colmap::image_t id : model.RegImageIds()) {
-    const Eigen::Vector3d c = ref_from_model * model.Image(id).ProjectionCenter();
+    const Eigen::Vector3d c =
+        ref_from_model * model.Image(id).ProjectionCenter();
     eval.aligned_centres.push_back({c.x(), c.y(), c.z()});
   }
   eval.rotation_error_deg = Statistics(rotation);
@@ -195,9 +196,9 @@ std::vector<std::array<double, 3>> ReadCameraCentres(
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options) {
-  const colmap::Reconstruction reference =
-      reference_path.empty() ? colmap::Reconstruction()
-                             : ReadModel(reference_path);
+  const colmap::Reconstruction reference = reference_path.empty()
+                                               ? colmap::Reconstruction()
+                                               : ReadModel(reference_path);
   const colmap::Reconstruction model = ReadModel(model_path);
   ModelEvaluation eval = EvaluateReconstruction(reference, model, options);
   eval.model_path = model_path;

@@ -36,7 +36,7 @@ struct ModelAlignment {
   int num_shared_tracks = 0;
   int num_inliers = 0;
   int num_verified = 0;  // shared tracks of other images that fit
-  std::string reason;  // why the models stay apart
+  std::string reason;    // why the models stay apart
 };
 
 // The paper's merge rule (Sec. 5): find the image of the source model with
@@ -73,9 +73,8 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // (function tolerance 0); on a merged 1,087-image city that took 648 s and
 // left a median rotation error of 0.039 deg against the stock mapper's
 // 0.017. Returns false when there was nothing to adjust.
-bool AdjustMergedBundle(
-    const colmap::IncrementalMapperOptions& mapper_options,
-    colmap::IncrementalMapper* mapper);
+bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
+                        colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment

@@ -64,7 +64,8 @@ struct ModelEvaluation {
 
 // Reads the reference and the model (COLMAP models, binary or text) and
 // scores the model; with an empty reference_path only the model's own
-// statistics (images, points, reprojection error, tracks). Throws std::runtime_error for unreadable models.
+// statistics (images, points, reprojection error, tracks). Throws
+// std::runtime_error for unreadable models.
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options);

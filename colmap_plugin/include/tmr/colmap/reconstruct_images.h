@@ -22,11 +22,11 @@ struct ReconstructImagesOptions {
   std::string matcher = "auto";
   int max_exhaustive_images = 500;
   std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
-  bool single_camera = false;   // --ImageReader.single_camera
-  int max_image_size = 3200;    // --SiftExtraction.max_image_size
-  int max_num_features = 8192;  // --SiftExtraction.max_num_features
-  bool guided_matching = false;  // --SiftMatching.guided_matching
-  int sequential_overlap = 10;   // --SequentialMatching.overlap
+  bool single_camera = false;                  // --ImageReader.single_camera
+  int max_image_size = 3200;           // --SiftExtraction.max_image_size
+  int max_num_features = 8192;         // --SiftExtraction.max_num_features
+  bool guided_matching = false;        // --SiftMatching.guided_matching
+  int sequential_overlap = 10;         // --SequentialMatching.overlap
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
   // Threads of every stage (-1: all cores); mapper.num_threads follows it.
   int num_threads = -1;
@@ -37,10 +37,10 @@ struct ReconstructImagesOptions {
 };
 
 struct ReconstructImagesReport {
-  int num_photos = 0;         // image files found in image_path
-  int num_images = 0;         // images with features in the database
+  int num_photos = 0;          // image files found in image_path
+  int num_images = 0;          // images with features in the database
   int num_verified_pairs = 0;  // pairs with verified two-view geometry
-  std::string matcher;        // the matcher that ran
+  std::string matcher;         // the matcher that ran
   double extraction_seconds = 0.0;
   double matching_seconds = 0.0;
   TmrMapperReport mapper;
