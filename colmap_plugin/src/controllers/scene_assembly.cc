@@ -9,6 +9,7 @@
 
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
+#include "sfm/reconstruction_task.h"
 
 namespace tmr {
 namespace {
@@ -186,15 +187,17 @@ bool SceneAssembler::ReconstructLeftovers(
   colmap::IncrementalMapperController controller(options, "", merge_database_,
                                                  manager);
   controller.Run();
-  int registered = 0;
-  for (size_t i = 0; i < manager->Size(); ++i) {
-    registered += static_cast<int>(manager->Get(i)->NumRegImages());
-    scenes->push_back(manager->Get(i));
+  int registered = 0, added = 0;
+  for (const auto& model : DisjointModels(*manager)) {
+    if (model->NumRegImages() < 2) continue;
+    registered += static_cast<int>(model->NumRegImages());
+    scenes->push_back(model);
+    ++added;
   }
   record_({"images left over", leftovers, registered, SecondsSince(start), true,
-           std::to_string(manager->Size()) + " new models"});
+           std::to_string(added) + " new models"});
   SortBySize(scenes);
-  return manager->Size() > 0;
+  return added > 0;
 }
 
 }  // namespace tmr

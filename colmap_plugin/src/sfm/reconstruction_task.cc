@@ -4,8 +4,10 @@
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction_manager.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <unordered_set>
 
 namespace tmr {
 
@@ -25,6 +27,24 @@ bool WriteModelAtomically(const colmap::Reconstruction& model,
   fs::remove_all(path, ec);
   fs::rename(temporary, path, ec);
   return !ec;
+}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
+    colmap::ReconstructionManager& manager) {
+  std::vector<std::shared_ptr<colmap::Reconstruction>> models;
+  for (size_t i = 0; i < manager.Size(); ++i) models.push_back(manager.Get(i));
+  std::stable_sort(models.begin(), models.end(),
+                   [](const auto& a, const auto& b) {
+                     return a->NumRegImages() > b->NumRegImages();
+                   });
+  std::unordered_set<colmap::image_t> held;
+  for (const auto& model : models) {
+    const std::vector<colmap::image_t> images = model->RegImageIds();
+    for (const colmap::image_t id : images) {
+      if (!held.insert(id).second) model->DeRegisterImage(id);
+    }
+  }
+  return models;
 }
 
 namespace {
@@ -61,8 +81,8 @@ void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
   colmap::IncrementalMapperController controller(options, "", task_database,
                                                  manager);
   controller.Run();
-  for (size_t i = 0; i < manager->Size(); ++i) {
-    const auto& part = *manager->Get(i);
+  for (const auto& model : DisjointModels(*manager)) {
+    const auto& part = *model;
     if (static_cast<int>(part.NumRegImages()) < kMinPartImages) continue;
     const std::string path =
         output_model + "_part" + std::to_string(result->part_models.size() + 1);

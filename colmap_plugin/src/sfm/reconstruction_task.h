@@ -2,7 +2,9 @@
 #pragma once
 
 #include <colmap/controllers/incremental_mapper.h>
+#include <colmap/scene/reconstruction_manager.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +22,13 @@ struct ReconstructionTaskResult {
   std::vector<std::string> part_models;
   int num_registered_in_parts = 0;
 };
+
+// The models of a COLMAP mapper run with multiple_models, largest first,
+// each image in one model only. COLMAP lets its models share up to
+// Mapper.max_model_overlap images; a later (smaller) model here drops the
+// images an earlier one holds (their observations leave its tracks).
+std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
+    colmap::ReconstructionManager& manager);
 
 // One reconstruction task of the TMR-tree (paper Sec. 5): COLMAP's
 // IncrementalMapperController on the task's own database, producing one
