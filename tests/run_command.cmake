@@ -16,8 +16,9 @@ endfunction()
 # PREFIX_registered and PREFIX_rotation (median rotation error, degrees) of
 # the largest model, PREFIX_total (images registered over all models),
 # PREFIX_worst_rotation (the largest median rotation error of any model),
-# PREFIX_reprojection (mean reprojection error of the largest model, px) and
-# PREFIX_wrong (number of models flagged as a wrong merge).
+# PREFIX_reprojection (mean reprojection error of the largest model, px),
+# PREFIX_wrong (number of models flagged as a wrong merge) and PREFIX_shared
+# (images registered in more than one model).
 function(largest_model eval_json prefix)
   file(READ ${eval_json} json)
   string(JSON reference GET "${json}" models 0 reference_images)
@@ -53,6 +54,8 @@ function(largest_model eval_json prefix)
   set(${prefix}_worst_rotation ${worst} PARENT_SCOPE)
   set(${prefix}_wrong ${wrong} PARENT_SCOPE)
   set(${prefix}_reprojection ${reprojection} PARENT_SCOPE)
+  string(JSON shared GET "${json}" images_in_several_models)
+  set(${prefix}_shared ${shared} PARENT_SCOPE)
   message(STATUS "${prefix}: ${num_models} models, largest ${registered} of "
                  "${reference} images, median rotation error ${rotation} deg, "
                  "${wrong} wrong merges")

@@ -6,9 +6,10 @@
 #   no temporary folder; the input database is byte-identical and has no
 #   -wal/-shm files beside it.
 # - The result is separate correct models: no model is flagged as a wrong
-#   merge (tmr_eval), the unlinked place is not joined to the others (at
-#   least two models), every model has a median rotation error below 1
-#   degree, and at least 80% of the images are registered.
+#   merge (tmr_eval), no image is in two models, the unlinked place is not
+#   joined to the others (at least two models), every model has a median
+#   rotation error below 1 degree, and at least 80% of the images are
+#   registered.
 file(REMOVE_RECURSE ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
 
@@ -38,6 +39,9 @@ run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/out --output_json ${WORK
 largest_model(${WORK_DIR}/eval.json tmr)
 if(tmr_wrong)
   message(FATAL_ERROR "${tmr_wrong} models are wrong merges")
+endif()
+if(tmr_shared)
+  message(FATAL_ERROR "${tmr_shared} images are registered in several models")
 endif()
 if(tmr_models LESS 2)
   message(FATAL_ERROR "the unlinked place was merged with the others")

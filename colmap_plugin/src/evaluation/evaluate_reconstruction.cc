@@ -107,6 +107,8 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
                                                    kMaxTrackLengthBin)];
   }
 
+  for (const colmap::image_t id : model.RegImageIds())
+    eval.image_names.push_back(model.Image(id).Name());
   eval.num_reference_images = static_cast<int>(reference.NumRegImages());
   const auto common = model.FindCommonRegImageIds(reference);
   eval.num_common_images = static_cast<int>(common.size());

@@ -1,7 +1,9 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // Table and JSON output of model evaluations.
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
+#include <unordered_map>
 
 #include "tmr/colmap/model_evaluation.h"
 
@@ -102,7 +104,12 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
     }
     out << "]}";
   }
-  out << "\n]}\n";
+  std::unordered_map<std::string, int> models_of;
+  for (const ModelEvaluation& e : evaluations)
+    for (const std::string& name : e.image_names) ++models_of[name];
+  const auto shared = std::count_if(models_of.begin(), models_of.end(),
+                                    [](const auto& n) { return n.second > 1; });
+  out << "\n], \"images_in_several_models\": " << shared << "}\n";
 }
 
 }  // namespace tmr

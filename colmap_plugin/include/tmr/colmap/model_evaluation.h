@@ -60,6 +60,8 @@ struct ModelEvaluation {
   // Camera centres of the model's registered images in the reference's
   // frame (empty when not aligned).
   std::vector<std::array<double, 3>> aligned_centres;
+  // Names of the model's registered images.
+  std::vector<std::string> image_names;
 };
 
 // Reads the reference and the model (COLMAP models, binary or text) and
@@ -77,6 +79,8 @@ std::vector<std::array<double, 3>> ReadCameraCentres(
 
 void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
                           std::ostream& out);
+// Writes {"reference": ..., "models": [...], "images_in_several_models": N}
+// where N counts the image names registered in more than one of the models.
 void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
                          const std::string& reference_path, std::ostream& out);
 
