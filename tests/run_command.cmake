@@ -71,3 +71,19 @@ macro(micro out value)
   string(SUBSTRING "${CMAKE_MATCH_3}000000" 0 6 fraction)
   math(EXPR ${out} "${whole}0 * 100000 + 1${fraction} - 1000000")
 endmacro()
+
+# expect_rotation_no_worse(TMR STOCK PERCENT SLACK LABEL): stops the script
+# unless the median rotation error TMR is at most max(STOCK x PERCENT / 100,
+# STOCK + SLACK) (degrees as decimals; SLACK in micro-degrees).
+function(expect_rotation_no_worse tmr stock percent slack label)
+  micro(stock_u ${stock})
+  micro(tmr_u ${tmr})
+  math(EXPR allowed "${stock_u} * ${percent} / 100")
+  math(EXPR floor "${stock_u} + ${slack}")
+  if(floor GREATER allowed)
+    set(allowed ${floor})
+  endif()
+  if(tmr_u GREATER allowed)
+    message(FATAL_ERROR "${label}: median rotation error ${tmr} deg, stock ${stock} deg")
+  endif()
+endfunction()

@@ -58,9 +58,6 @@ int main(int argc, char** argv) {
           "tmr_reconstruct", argc, argv, desc, &vm, positional)) {
     return *exit_code;
   }
-  // --Mapper.num_threads stays in step with --num_threads.
-  if (vm["Mapper.num_threads"].defaulted())
-    o.mapper.num_threads = o.num_threads;
   std::string error;
   if (!o.Check(&error)) {
     std::cerr << "tmr_reconstruct: error: " << error << "\n";
@@ -74,10 +71,7 @@ int main(int argc, char** argv) {
       std::cerr << "tmr_reconstruct: error: " << error << "\n";
       return 1;
     }
-    tmr::TmrMapperOptions mapper = o.mapper;
-    mapper.database_path =
-        (fs::path(o.workspace_path) / "database.db").string();
-    mapper.output_path = (fs::path(o.workspace_path) / "sparse").string();
+    const tmr::TmrMapperOptions mapper = o.MapperOptions();
     tmr::WriteFileAtomically(
         (fs::path(mapper.output_path) / "project.ini").string(),
         tmr::ProjectIni(desc, vm));

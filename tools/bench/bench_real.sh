@@ -31,7 +31,7 @@ CSV="$OUT/results.csv"
 timed() {  # LOG COMMAND...: prints the wall time in seconds
   local log=$1; shift
   /usr/bin/time -f "%e" -o "$log.time" "$@" >"$log" 2>&1 || true
-  cat "$log.time" | tail -1
+  tail -1 "$log.time"
 }
 
 # score CASE PHOTOS TOOL WALL MODELS_DIR GT_DIR|"" [TOP_VIEW_PNG]

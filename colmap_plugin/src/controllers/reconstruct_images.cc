@@ -97,6 +97,15 @@ void RunWithProgress(colmap::Thread* thread, const std::string& what,
 
 }  // namespace
 
+TmrMapperOptions ReconstructImagesOptions::MapperOptions() const {
+  TmrMapperOptions o = mapper;
+  o.database_path = (fs::path(workspace_path) / "database.db").string();
+  o.output_path = (fs::path(workspace_path) / "sparse").string();
+  o.image_path = image_path;
+  o.num_threads = num_threads;
+  return o;
+}
+
 bool ReconstructImagesOptions::Check(std::string* error) const {
   auto fail = [error](const std::string& message) {
     if (error) *error = message;
@@ -124,12 +133,7 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
     return fail("--SpatialMatching.max_num_neighbors must be positive");
   if (num_threads == 0 || num_threads < -1)
     return fail("--num_threads must be positive or -1 (all cores)");
-  // The paths the run sets.
-  TmrMapperOptions run_mapper = mapper;
-  run_mapper.database_path =
-      (fs::path(workspace_path) / "database.db").string();
-  run_mapper.output_path = (fs::path(workspace_path) / "sparse").string();
-  return run_mapper.Check(error);
+  return MapperOptions().Check(error);
 }
 
 bool RunReconstructImages(
@@ -159,8 +163,8 @@ bool RunReconstructImages(
     return fail("cannot create workspace '" + options.workspace_path +
                 "': " + ec.message());
   }
-  const std::string database =
-      (fs::path(options.workspace_path) / "database.db").string();
+  const TmrMapperOptions mapper = options.MapperOptions();
+  const std::string& database = mapper.database_path;
 
   // Features: COLMAP skips images already in the database.
   {
@@ -246,11 +250,6 @@ bool RunReconstructImages(
   say("features in " + std::to_string(report->num_images) + " images, " +
       std::to_string(report->num_verified_pairs) + " verified pairs");
 
-  TmrMapperOptions mapper = options.mapper;
-  mapper.database_path = database;
-  mapper.image_path = options.image_path;
-  mapper.output_path = (fs::path(options.workspace_path) / "sparse").string();
-  mapper.num_threads = options.num_threads;
   if (!RunTmrMapper(mapper, &report->mapper, error, progress)) return false;
 
   report->models.clear();

@@ -30,8 +30,13 @@ struct ReconstructImagesOptions {
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
   // Threads of every stage (-1: all cores); mapper.num_threads follows it.
   int num_threads = -1;
-  // database_path, output_path and image_path are set by the run.
+  // database_path, output_path, image_path and num_threads are set by the
+  // run (MapperOptions).
   TmrMapperOptions mapper;
+
+  // `mapper` as the run uses it: workspace_path/database.db in,
+  // workspace_path/sparse out, colours from image_path, num_threads.
+  TmrMapperOptions MapperOptions() const;
 
   bool Check(std::string* error = nullptr) const;
 };
