@@ -70,10 +70,8 @@ ImageClusters AssignByMultiLayerShortestPath(
   result.cluster.assign(n, -1);
   result.layer.assign(n, 0);
   result.path_length.assign(n, std::numeric_limits<double>::infinity());
-  std::vector<int> source_cluster(n, -1);
   for (size_t k = 0; k < kernels.size(); ++k) {
     for (const int v : kernels[k]) result.cluster.at(v) = static_cast<int>(k);
-    source_cluster.at(exemplars[k]) = static_cast<int>(k);
   }
   if (exemplars.empty() || difference.NumEdges() == 0) return result;
 
@@ -95,17 +93,22 @@ ImageClusters AssignByMultiLayerShortestPath(
         boost::get(&EdgeWeight::weight, graph), index, std::less<double>(),
         boost::closed_plus<double>(), std::numeric_limits<double>::infinity(),
         0.0, boost::default_dijkstra_visitor());
-    // The exemplar an image was reached from: follow predecessors.
+    // The cluster of the first clustered image on the path back to the
+    // exemplar: a path may pass through another cluster's images (a kernel
+    // image far from its exemplar, an image assigned in an earlier layer),
+    // and the images beyond such an image join its cluster, so that every
+    // cluster stays connected through its own images (a leaf task can only
+    // register images it reaches from the kernel).
     std::vector<int> reached_from(n, -2);
     auto origin = [&](int v) {
       std::vector<int> chain;
-      while (reached_from[v] == -2 && source_cluster[v] < 0 &&
+      while (reached_from[v] == -2 && result.cluster[v] < 0 &&
              predecessor[v] != v) {
         chain.push_back(v);
         v = predecessor[v];
       }
       const int label =
-          reached_from[v] != -2 ? reached_from[v] : source_cluster[v];
+          reached_from[v] != -2 ? reached_from[v] : result.cluster[v];
       for (const int u : chain) reached_from[u] = label;
       reached_from[v] = label;
       return label;

@@ -51,6 +51,23 @@ TEST(MultiLayerShortestPath,
   EXPECT_EQ(result.layer[2], 20);
 }
 
+// X's shortest path to exemplar E1 passes through K2, an image of the other
+// kernel: X joins K2's cluster, the first clustered image on its path, so
+// that every cluster is connected through its own images.
+TEST(MultiLayerShortestPath, PathThroughAnotherClusterJoinsThatCluster) {
+  enum { E1, K2, E2, X, Y, N };
+  const ImageGraph d(N, {{E1, K2, 0.1},
+                         {K2, E2, 0.5},
+                         {K2, X, 0.1},
+                         {X, Y, 0.1},
+                         {E1, Y, 0.9}});
+  const ImageClusters result =
+      AssignByMultiLayerShortestPath(d, {{E1}, {K2, E2}}, {E1, E2}, {});
+  EXPECT_EQ(result.cluster[X], 1);
+  EXPECT_EQ(result.cluster[Y], 1);
+  EXPECT_NEAR(result.path_length[X], 0.2, 1e-12);
+}
+
 TEST(MultiLayerShortestPath, TwoGroupsSplitAtTheChain) {
   const test::TwoGroups scene(18, 30, /*with_chain=*/true);
   const ImageGraph d = BuildDifferenceGraph(BuildSimilarityGraph(

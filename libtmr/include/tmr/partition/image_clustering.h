@@ -28,9 +28,12 @@ struct ImageClusters {
 // Image clustering by Multi-layer Shortest Path (paper Sec. 4.2, Eq. 6) on
 // the difference graph D. Layer t keeps the edges with d < phi_t =
 // min d + t * (max d - min d) / L (the last layer keeps all edges). In each
-// layer one multi-source Dijkstra (Boost.Graph) from all exemplars assigns
-// every still unassigned image that now reaches an exemplar to the nearest
-// one; it keeps that cluster in later layers. Kernel images belong to their
+// layer one multi-source Dijkstra (Boost.Graph) from all exemplars reaches
+// every still unassigned image by its shortest path; the image joins the
+// cluster of the first clustered image on that path back to the exemplar
+// (usually the exemplar's own; another cluster's when the path passes
+// through its images), so every cluster is connected through its own images.
+// It keeps that cluster in later layers. Kernel images belong to their
 // kernel from the start. Paths found in an early layer avoid weak overlaps
 // (large d), as the paper's Fig. 5 asks.
 ImageClusters AssignByMultiLayerShortestPath(
