@@ -45,6 +45,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "keep kernel poses fixed in leaf tasks");
   add("Tmr.merge_min_shared_tracks", &o->merge_min_shared_tracks,
       "tau of the merge rule");
+  add("Tmr.task_ba_global_ratio", &o->task_ba_global_ratio,
+      "model growth between global BAs in tasks (COLMAP: 1.1)");
   add("Tmr.refine_merged_models", &o->refine_merged_models,
       "global bundle adjustment after merges");
   add("Tmr.complete_models", &o->complete_models,

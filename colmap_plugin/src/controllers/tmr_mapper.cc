@@ -178,6 +178,15 @@ class TmrMapperRun {
     return true;
   }
 
+  // COLMAP's mapper options for a kernel or leaf task.
+  colmap::IncrementalMapperOptions TaskOptions(int num_threads) const {
+    colmap::IncrementalMapperOptions options =
+        ColmapOptions(o_.mapper, num_threads);
+    options.ba_global_images_ratio = o_.task_ba_global_ratio;
+    options.ba_global_points_ratio = o_.task_ba_global_ratio;
+    return options;
+  }
+
   void RunKernel(int k, int num_threads) {
     const TmrKernelNode& node = tree_.kernels[k];
     TmrTaskReport task;
@@ -197,8 +206,8 @@ class TmrMapperRun {
         pairs.emplace_back(tree_.image_ids[node.exemplar],
                            tree_.image_ids[second]);
       }
-      const auto result = RunReconstructionTask(
-          ColmapOptions(o_.mapper, num_threads), db, "", pairs, KernelModel(k));
+      const auto result = RunReconstructionTask(TaskOptions(num_threads), db,
+                                                "", pairs, KernelModel(k));
       task.num_registered = result.num_registered;
       task.seconds = result.seconds;
       task.success = result.success;
@@ -250,7 +259,7 @@ class TmrMapperRun {
     if (!WriteTaskDatabase(o_.database_path, images, db, &error)) {
       task.message = error;
     } else {
-      auto mapper = ColmapOptions(o_.mapper, num_threads);
+      auto mapper = TaskOptions(num_threads);
       mapper.fix_existing_images = o_.fix_base_in_leaves;
       const auto result = RunReconstructionTask(mapper, db, KernelModel(k), {},
                                                 LeafModel(k, l));
