@@ -51,6 +51,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "global bundle adjustment after merges");
   add("Tmr.complete_models", &o->complete_models,
       "finally register images no model holds");
+  add("Tmr.resume", &o->resume,
+      "reuse the tasks a killed run into OUT finished");
   add("Tmr.keep_work", &o->keep_work,
       "keep task databases and models in OUT/.tmr_work");
   AddTmrTreeOptions(desc, &o->tree);

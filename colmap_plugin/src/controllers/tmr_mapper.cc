@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <unordered_set>
@@ -57,11 +58,22 @@ class TmrMapperRun {
     tree_ = BuildTmrTree(graph, o_.tree);
     report_->num_images = graph.NumImages();
     report_->partition_seconds = SecondsSince(start);
-    // A killed run's task files are not reused (yet): start clean.
-    fs::remove_all(work_);
-    fs::create_directories(work_);
     std::ostringstream json;
     WriteTmrTreeJson(tree_, json);
+    // The kernel and leaf tasks a killed run finished are reused when the
+    // database, the partition and the options of the tasks are the same.
+    const std::string run_id = RunFingerprint(o_, json.str());
+    const fs::path run_id_path = work_ / "run.id";
+    resuming_ = o_.resume && ReadFileToString(run_id_path.string()) == run_id;
+    if (resuming_) {
+      Progress("resuming: reusing the tasks an earlier run finished in " +
+               work_.string());
+    } else {
+      fs::remove_all(work_);
+      fs::create_directories(work_);
+      if (!WriteFileAtomically(run_id_path.string(), run_id))
+        return Fail("cannot write in '" + work_.string() + "'", error);
+    }
     if (!WriteFileAtomically((fs::path(o_.output_path) / "tree.json").string(),
                              json.str())) {
       return Fail("cannot write tree.json in '" + o_.output_path + "'", error);
@@ -187,40 +199,56 @@ class TmrMapperRun {
     return options;
   }
 
+  // The result of a task an earlier, killed run finished (see Run), or
+  // nothing.
+  std::optional<ReconstructionTaskResult> Reused(const std::string& model) {
+    ReconstructionTaskResult result;
+    if (!resuming_ || !LoadTaskResult(model + ".result", &result) ||
+        (result.success && !fs::is_directory(model)))
+      return std::nullopt;
+    result.message += " (finished by an earlier run)";
+    return result;
+  }
+
   void RunKernel(int k, int num_threads) {
     const TmrKernelNode& node = tree_.kernels[k];
     TmrTaskReport task;
     task.name = "kernel " + std::to_string(k);
     task.num_images = static_cast<int>(node.kernel_images.size());
+    std::optional<ReconstructionTaskResult> result = Reused(KernelModel(k));
     const std::string db = KernelModel(k) + ".db";
     std::string error;
-    if (!WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images), db,
-                           &error)) {
+    if (!result && !WriteTaskDatabase(o_.database_path,
+                                      Ids(tree_, node.kernel_images), db,
+                                      &error)) {
       task.message = error;
     } else {
-      // The exemplar first with COLMAP's choice of a second image (most
-      // matches, wide enough baseline), then with ours.
-      std::vector<std::pair<int, int>> pairs = {
-          {tree_.image_ids[node.exemplar], -1}};
-      for (const int second : node.second_images) {
-        pairs.emplace_back(tree_.image_ids[node.exemplar],
-                           tree_.image_ids[second]);
+      if (!result) {
+        // The exemplar first with COLMAP's choice of a second image (most
+        // matches, wide enough baseline), then with ours.
+        std::vector<std::pair<int, int>> pairs = {
+            {tree_.image_ids[node.exemplar], -1}};
+        for (const int second : node.second_images) {
+          pairs.emplace_back(tree_.image_ids[node.exemplar],
+                             tree_.image_ids[second]);
+        }
+        result = RunReconstructionTask(TaskOptions(num_threads), db, "", pairs,
+                                       KernelModel(k));
+        SaveTaskResult(*result, KernelModel(k) + ".result");
       }
-      const auto result = RunReconstructionTask(TaskOptions(num_threads), db,
-                                                "", pairs, KernelModel(k));
-      task.num_registered = result.num_registered;
-      task.seconds = result.seconds;
-      task.success = result.success;
-      task.message = result.message;
-      kernel_ok_[k] = result.success;
-      base_registered_[k] = result.num_registered;
-      if (!result.part_models.empty()) {
+      task.num_registered = result->num_registered;
+      task.seconds = result->seconds;
+      task.success = result->success;
+      task.message = result->message;
+      kernel_ok_[k] = result->success;
+      base_registered_[k] = result->num_registered;
+      if (!result->part_models.empty()) {
         task.message +=
-            "; the rest in " + std::to_string(result.part_models.size()) +
+            "; the rest in " + std::to_string(result->part_models.size()) +
             " more models of " +
-            std::to_string(result.num_registered_in_parts) + " images";
+            std::to_string(result->num_registered_in_parts) + " images";
         std::lock_guard<std::mutex> lock(mutex_);
-        for (const std::string& path : result.part_models) {
+        for (const std::string& path : result->part_models) {
           auto part = std::make_shared<colmap::Reconstruction>();
           part->ReadBinary(path);
           for (const colmap::image_t id : part->RegImageIds())
@@ -254,19 +282,23 @@ class TmrMapperRun {
     task.num_images += static_cast<int>(images.size()) - base_registered_[k];
     for (const uint32_t id : Ids(tree_, node.leaf_clusters[l]))
       images.push_back(id);
+    std::optional<ReconstructionTaskResult> result = Reused(LeafModel(k, l));
     const std::string db = LeafModel(k, l) + ".db";
     std::string error;
-    if (!WriteTaskDatabase(o_.database_path, images, db, &error)) {
+    if (!result && !WriteTaskDatabase(o_.database_path, images, db, &error)) {
       task.message = error;
     } else {
-      auto mapper = TaskOptions(num_threads);
-      mapper.fix_existing_images = o_.fix_base_in_leaves;
-      const auto result = RunReconstructionTask(mapper, db, KernelModel(k), {},
-                                                LeafModel(k, l));
-      task.num_registered = result.num_registered - base_registered_[k];
-      task.seconds = result.seconds;
-      task.success = result.success;
-      task.message = result.message;
+      if (!result) {
+        auto mapper = TaskOptions(num_threads);
+        mapper.fix_existing_images = o_.fix_base_in_leaves;
+        result = RunReconstructionTask(mapper, db, KernelModel(k), {},
+                                       LeafModel(k, l));
+        SaveTaskResult(*result, LeafModel(k, l) + ".result");
+      }
+      task.num_registered = result->num_registered - base_registered_[k];
+      task.seconds = result->seconds;
+      task.success = result->success;
+      task.message = result->message;
     }
     if (task.success) {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -354,6 +386,7 @@ class TmrMapperRun {
   std::function<void(const std::string&)> progress_;
   int threads_ = 1;
   fs::path work_;
+  bool resuming_ = false;  // finished tasks of an earlier run are reused
   TmrTree tree_;
   // Written by the tasks of the graph (each entry by one task only).
   std::vector<char> kernel_ok_;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -26,6 +28,34 @@ colmap::IncrementalMapperOptions ColmapOptions(
   o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
   o.num_threads = num_threads;
   return o;
+}
+
+std::string RunFingerprint(const TmrMapperOptions& o,
+                           const std::string& tree_json) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto size = fs::file_size(o.database_path, ec);
+  const auto time = fs::last_write_time(o.database_path, ec);
+  const MapperPassThroughOptions& m = o.mapper;
+  std::ostringstream id;
+  id.precision(17);
+  id << "database " << o.database_path << " " << size << " "
+     << time.time_since_epoch().count() << "\nmapper " << m.min_num_matches
+     << " " << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
+     << m.abs_pose_min_num_inliers << " " << m.filter_max_reproj_error << " "
+     << m.tri_min_angle << " " << m.ba_refine_focal_length << " "
+     << m.ba_refine_principal_point << " " << m.ba_refine_extra_params << " "
+     << m.ba_global_max_num_iterations << "\ntasks " << o.fix_base_in_leaves
+     << " " << o.task_ba_global_ratio << "\n"
+     << tree_json;
+  return id.str();
+}
+
+std::string ReadFileToString(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream content;
+  content << in.rdbuf();
+  return in ? content.str() : std::string();
 }
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {

@@ -20,6 +20,15 @@ colmap::IncrementalMapperOptions ColmapOptions(
 // Seconds of wall time since `start`.
 double SecondsSince(std::chrono::steady_clock::time_point start);
 
+// What the kernel and leaf tasks of a run depend on: the partition
+// (tree.json), the database file (size and modification time) and the
+// options of the tasks. A rerun reuses finished tasks only when it matches.
+std::string RunFingerprint(const TmrMapperOptions& options,
+                           const std::string& tree_json);
+
+// The content of a file; empty when it cannot be read.
+std::string ReadFileToString(const std::string& path);
+
 // report.json of a run.
 std::string ReportJson(const TmrMapperReport& report);
 

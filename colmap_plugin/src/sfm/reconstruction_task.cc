@@ -7,7 +7,11 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unordered_set>
+
+#include "tmr/io/atomic_file.h"
 
 namespace tmr {
 
@@ -27,6 +31,42 @@ bool WriteModelAtomically(const colmap::Reconstruction& model,
   fs::remove_all(path, ec);
   fs::rename(temporary, path, ec);
   return !ec;
+}
+
+bool SaveTaskResult(const ReconstructionTaskResult& result,
+                    const std::string& path) {
+  std::ostringstream out;
+  out << "tmr-task-result 1\n"
+      << result.success << " " << result.num_images << " "
+      << result.num_registered << " " << result.seconds << " "
+      << result.num_registered_in_parts << " " << result.part_models.size()
+      << "\n";
+  for (const std::string& part : result.part_models) out << part << "\n";
+  out << result.message << "\nend\n";
+  return WriteFileAtomically(path, out.str());
+}
+
+bool LoadTaskResult(const std::string& path, ReconstructionTaskResult* result) {
+  std::ifstream in(path);
+  std::string header;
+  size_t num_parts = 0;
+  ReconstructionTaskResult r;
+  if (!std::getline(in, header) || header != "tmr-task-result 1") return false;
+  if (!(in >> r.success >> r.num_images >> r.num_registered >> r.seconds >>
+        r.num_registered_in_parts >> num_parts))
+    return false;
+  in.ignore(1);
+  for (size_t i = 0; i < num_parts; ++i) {
+    std::string part;
+    if (!std::getline(in, part) || !std::filesystem::is_directory(part))
+      return false;
+    r.part_models.push_back(part);
+  }
+  std::string end;
+  if (!std::getline(in, r.message) || !std::getline(in, end) || end != "end")
+    return false;
+  *result = std::move(r);
+  return true;
 }
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(

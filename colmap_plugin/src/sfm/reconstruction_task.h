@@ -51,6 +51,14 @@ ReconstructionTaskResult RunReconstructionTask(
     const std::vector<std::pair<int, int>>& initial_pairs,
     const std::string& output_model);
 
+// A finished task's result on disk (a small text file, written atomically
+// after the task's models), so that a rerun of a killed run can reuse it.
+bool SaveTaskResult(const ReconstructionTaskResult& result,
+                    const std::string& path);
+// False when `path` is missing or not a complete record, or when a model it
+// names is missing.
+bool LoadTaskResult(const std::string& path, ReconstructionTaskResult* result);
+
 // Writes a model through `path`.tmp and a rename; false on failure.
 bool WriteModelAtomically(const colmap::Reconstruction& model,
                           const std::string& path);

@@ -49,6 +49,10 @@ struct TmrMapperOptions {
   bool complete_models = true;
   // Keep the task databases and models in output_path/.tmr_work.
   bool keep_work = false;
+  // Reuse the kernel and leaf tasks that a killed run into the same
+  // output_path finished (output_path/.tmr_work), when the database, the
+  // partition and the task options are the same; otherwise start clean.
+  bool resume = true;
   // Its min_num_matches is taken from mapper.min_num_matches.
   MatchGraphOptions match_graph;
   TmrTreeOptions tree;
