@@ -62,7 +62,11 @@ class TmrMapperRun {
     WriteTmrTreeJson(tree_, json);
     // The kernel and leaf tasks a killed run finished are reused when the
     // database, the partition and the options of the tasks are the same.
-    const std::string run_id = RunFingerprint(o_, json.str());
+    TmrTree untimed = tree_;
+    untimed.timing = {};
+    std::ostringstream partition;
+    WriteTmrTreeJson(untimed, partition);
+    const std::string run_id = RunFingerprint(o_, partition.str());
     const fs::path run_id_path = work_ / "run.id";
     resuming_ = o_.resume && ReadFileToString(run_id_path.string()) == run_id;
     if (resuming_) {
@@ -128,7 +132,8 @@ class TmrMapperRun {
     line.precision(1);
     line << std::fixed << task.name << ": " << task.num_registered << "/"
          << task.num_images << " images in " << task.seconds << " s"
-         << (task.success ? "" : ", " + task.message);
+         << (task.success ? "" : ", " + task.message)
+         << (task.reused ? " (finished by an earlier run)" : "");
     if (weight > 0 && done_weight_ < total_weight_) {
       const double elapsed = SecondsSince(graph_start_);
       line << "; ETA "
@@ -206,7 +211,6 @@ class TmrMapperRun {
     if (!resuming_ || !LoadTaskResult(model + ".result", &result) ||
         (result.success && !fs::is_directory(model)))
       return std::nullopt;
-    result.message += " (finished by an earlier run)";
     return result;
   }
 
@@ -216,6 +220,7 @@ class TmrMapperRun {
     task.name = "kernel " + std::to_string(k);
     task.num_images = static_cast<int>(node.kernel_images.size());
     std::optional<ReconstructionTaskResult> result = Reused(KernelModel(k));
+    task.reused = result.has_value();
     const std::string db = KernelModel(k) + ".db";
     std::string error;
     if (!result && !WriteTaskDatabase(o_.database_path,
@@ -283,6 +288,7 @@ class TmrMapperRun {
     for (const uint32_t id : Ids(tree_, node.leaf_clusters[l]))
       images.push_back(id);
     std::optional<ReconstructionTaskResult> result = Reused(LeafModel(k, l));
+    task.reused = result.has_value();
     const std::string db = LeafModel(k, l) + ".db";
     std::string error;
     if (!result && !WriteTaskDatabase(o_.database_path, images, db, &error)) {

@@ -78,6 +78,7 @@ std::string ReportJson(const TmrMapperReport& r) {
         << ", \"registered\": " << t.num_registered
         << ", \"seconds\": " << t.seconds
         << ", \"success\": " << (t.success ? "true" : "false")
+        << ", \"reused\": " << (t.reused ? "true" : "false")
         << ", \"message\": \"";
     for (const char c : t.message)
       out << (c == '"' || c == '\\' ? "\\" : "") << c;

@@ -68,6 +68,7 @@ struct TmrTaskReport {
   double seconds = 0.0;
   bool success = false;
   std::string message;
+  bool reused = false;  // finished by an earlier, killed run (Tmr.resume)
 };
 
 struct TmrMapperReport {
