@@ -39,7 +39,8 @@ std::string RunFingerprint(const TmrMapperOptions& o,
   const MapperPassThroughOptions& m = o.mapper;
   std::ostringstream id;
   id.precision(17);
-  id << "database " << o.database_path << " " << size << " "
+  id << "database " << fs::weakly_canonical(o.database_path, ec).string()
+     << " " << size << " "
      << time.time_since_epoch().count() << "\nmapper " << m.min_num_matches
      << " " << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
      << m.abs_pose_min_num_inliers << " " << m.filter_max_reproj_error << " "
