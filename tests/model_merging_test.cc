@@ -137,28 +137,5 @@ TEST_F(ModelMergingTest, ASourceThatFitsOnlyAtItsAnchorImageStaysApart) {
   EXPECT_NE(bad.reason.find("other images"), std::string::npos) << bad.reason;
 }
 
-// Seams: none within one part; images observing tracks that cross parts;
-// every image no part lists (added later) is a seam itself.
-TEST_F(ModelMergingTest, SeamImagesAreThoseOnTracksAcrossParts) {
-  const std::vector<colmap::image_t> place = Images("place0/");
-  const std::vector<colmap::image_t> unlinked = Images("place1/");
-  ASSERT_GE(place.size(), 4u);
-  ASSERT_GE(unlinked.size(), 2u);
-  std::vector<colmap::image_t> both = place;
-  both.insert(both.end(), unlinked.begin(), unlinked.end());
-  const colmap::Reconstruction model = Keep(both);
-  std::unordered_map<colmap::image_t, int> part_of;
-  for (const colmap::image_t id : place) part_of[id] = 0;
-  for (const colmap::image_t id : unlinked) part_of[id] = 1;
-  // Two parts that share no track: no seam.
-  EXPECT_TRUE(SeamImages(model, part_of).empty());
-  // An image no part lists is a seam, and so are those sharing its tracks.
-  part_of.erase(place[0]);
-  const auto seams = SeamImages(model, part_of);
-  EXPECT_TRUE(seams.count(place[0]));
-  for (const colmap::image_t id : unlinked) EXPECT_FALSE(seams.count(id));
-  EXPECT_LE(seams.size(), place.size());
-}
-
 }  // namespace
 }  // namespace tmr

@@ -52,15 +52,6 @@ SceneAssembler::SceneAssembler(
 std::vector<std::shared_ptr<colmap::Reconstruction>>
 SceneAssembler::MergeScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) const {
-  for (const auto& model : clusters) {
-    const std::vector<colmap::image_t> images = model->RegImageIds();
-    const bool new_part = std::none_of(
-        images.begin(), images.end(),
-        [&](colmap::image_t id) { return part_of_.count(id) > 0; });
-    if (!new_part) continue;
-    const int part = next_part_++;
-    for (const colmap::image_t id : images) part_of_[id] = part;
-  }
   SortBySize(&clusters);
   ModelAlignmentOptions align;
   align.min_shared_tracks = o_.merge_min_shared_tracks;
@@ -168,12 +159,10 @@ void SceneAssembler::RefineMergedScenes(
   for (const auto& scene : scenes) {
     if (!unrefined_.count(scene.get())) continue;
     const auto start = Clock::now();
-    const int adjusted = RefineMergedModel(
-        cache_, mapper, o_.refine_merged_models, scene, &part_of_);
+    RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
     const int images = static_cast<int>(scene->NumRegImages());
     record_({"refine merged model", images, images, SecondsSince(start), true,
-             "tracks merged, bundle adjustment of " + std::to_string(adjusted) +
-                 " images"});
+             "tracks merged, global bundle adjustment"});
   }
   unrefined_.clear();
 }

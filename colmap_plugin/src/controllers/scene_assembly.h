@@ -7,7 +7,6 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -48,11 +47,9 @@ class SceneAssembler {
   void CompleteScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
 
-  // Refines the scenes merged or completed since their last adjustment:
-  // tracks completed and merged over the full correspondence graph, bundle
-  // adjustment of the seams between the merged models and of the images
-  // completion added (of the whole scene when those are half of it), point
-  // filtering.
+  // Refines the scenes merged or completed since their last global
+  // adjustment: tracks completed and merged over the full correspondence
+  // graph, global bundle adjustment, point filtering.
   void RefineMergedScenes(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
 
@@ -68,12 +65,8 @@ class SceneAssembler {
   std::vector<std::string> image_names_;
   int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
-  // Scenes merged or completed since their last adjustment.
+  // Scenes merged or completed since their last global adjustment.
   mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
-  // The input model of MergeScenes each image came from; images added by
-  // CompleteScenes have none. Seams between parts are adjusted at the end.
-  mutable std::unordered_map<colmap::image_t, int> part_of_;
-  mutable int next_part_ = 0;
 };
 
 }  // namespace tmr

@@ -201,30 +201,16 @@ void AppendReconstruction(const colmap::Reconstruction& source,
   }
 }
 
-bool AdjustMergedBundle(
-    const colmap::IncrementalMapperOptions& mapper_options,
-    colmap::IncrementalMapper* mapper,
-    const std::unordered_set<colmap::image_t>* variable_images) {
+bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
+                        colmap::IncrementalMapper* mapper) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
   const std::vector<colmap::image_t>& images = model.RegImageIds();
   if (images.size() < 2) return false;
   mapper->ObservationManager().FilterObservationsWithNegativeDepth();
   colmap::BundleAdjustmentConfig config;
-  if (variable_images) {
-    if (variable_images->empty()) return false;
-    for (const colmap::image_t id : *variable_images) {
-      config.AddImage(id);
-      // The point's observations in fixed images join the problem too.
-      for (const colmap::Point2D& p : model.Image(id).Points2D())
-        if (p.HasPoint3D()) config.AddVariablePoint(p.point3D_id);
-    }
-    for (const auto& [camera_id, camera] : model.Cameras())
-      config.SetConstantCamIntrinsics(camera_id);
-  } else {
-    for (const colmap::image_t id : images) config.AddImage(id);
-    config.SetConstantCamPose(images[0]);
-    config.SetConstantCamPositions(images[1], {0});
-  }
+  for (const colmap::image_t id : images) config.AddImage(id);
+  config.SetConstantCamPose(images[0]);
+  config.SetConstantCamPositions(images[1], {0});
   const colmap::BundleAdjustmentOptions options =
       mapper_options.GlobalBundleAdjustment();
   colmap::BundleAdjuster adjuster(options, config);
@@ -244,53 +230,19 @@ bool AdjustMergedBundle(
   return true;
 }
 
-std::unordered_set<colmap::image_t> SeamImages(
-    const colmap::Reconstruction& model,
-    const std::unordered_map<colmap::image_t, int>& part_of) {
-  auto part = [&](colmap::image_t id) {
-    const auto found = part_of.find(id);
-    return found == part_of.end() ? -1 : found->second;
-  };
-  std::unordered_set<colmap::image_t> seams;
-  for (const colmap::image_t id : model.RegImageIds())
-    if (part(id) < 0) seams.insert(id);
-  for (const auto& [point_id, point] : model.Points3D()) {
-    const auto& track = point.track.Elements();
-    const int first = part(track.front().image_id);
-    const bool crosses = std::any_of(
-        track.begin(), track.end(),
-        [&](const auto& el) { return part(el.image_id) != first; });
-    if (!crosses) continue;
-    for (const auto& el : track) seams.insert(el.image_id);
-  }
-  return seams;
-}
-
-int RefineMergedModel(
+void RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool bundle_adjustment,
-    const std::shared_ptr<colmap::Reconstruction>& model,
-    const std::unordered_map<colmap::image_t, int>* part_of) {
+    bool global_bundle_adjustment,
+    const std::shared_ptr<colmap::Reconstruction>& model) {
   colmap::IncrementalMapper mapper(database_cache);
   mapper.BeginReconstruction(model);
   const auto triangulation = mapper_options.Triangulation();
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
-  int adjusted = 0;
-  if (bundle_adjustment) {
-    std::unordered_set<colmap::image_t> seams;
-    if (part_of) seams = SeamImages(*model, *part_of);
-    const bool seams_only = part_of && 2 * seams.size() < model->NumRegImages();
-    if (AdjustMergedBundle(mapper_options, &mapper,
-                           seams_only ? &seams : nullptr)) {
-      adjusted = static_cast<int>(seams_only ? seams.size()
-                                             : model->NumRegImages());
-    }
-  }
+  if (global_bundle_adjustment) AdjustMergedBundle(mapper_options, &mapper);
   mapper.FilterPoints(mapper_options.Mapper());
   mapper.EndReconstruction(/*discard=*/false);
-  return adjusted;
 }
 
 }  // namespace tmr

@@ -9,8 +9,6 @@
 
 #include <memory>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
 
 namespace tmr {
 
@@ -74,35 +72,18 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // 1,000 images and runs its global adjustments to the iteration limit
 // (function tolerance 0); on a merged 1,087-image city that took 648 s and
 // left a median rotation error of 0.039 deg against the stock mapper's
-// 0.017. With `variable_images`, only those images' poses and the points
-// they observe are adjusted; the other images keep their poses and
-// intrinsics and hold the gauge (their observations of those points still
-// count). Returns false when there was nothing to adjust.
-bool AdjustMergedBundle(
-    const colmap::IncrementalMapperOptions& mapper_options,
-    colmap::IncrementalMapper* mapper,
-    const std::unordered_set<colmap::image_t>* variable_images = nullptr);
-
-// The images of `model` on a seam between its parts (`part_of`: the part
-// each image came from; images it does not list are new and count as seams
-// themselves): images that observe a point whose track spans several parts.
-std::unordered_set<colmap::image_t> SeamImages(
-    const colmap::Reconstruction& model,
-    const std::unordered_map<colmap::image_t, int>& part_of);
+// 0.017. Returns false when there was nothing to adjust.
+bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
+                        colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
-// the full correspondence graph), then bundle adjustment
+// the full correspondence graph), then global bundle adjustment
 // (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
-// registering images. With `part_of` (see SeamImages) and seams that hold
-// less than half of the images, only the seams are adjusted: the parts were
-// adjusted as a whole before they merged, and a global adjustment grows
-// faster than linearly with the model (481 s of 1,470 on an 1,800-image
-// city). Returns the number of images adjusted.
-int RefineMergedModel(
+// registering images.
+void RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool bundle_adjustment,
-    const std::shared_ptr<colmap::Reconstruction>& model,
-    const std::unordered_map<colmap::image_t, int>* part_of = nullptr);
+    bool global_bundle_adjustment,
+    const std::shared_ptr<colmap::Reconstruction>& model);
 
 }  // namespace tmr
