@@ -159,10 +159,11 @@ void SceneAssembler::RefineMergedScenes(
   for (const auto& scene : scenes) {
     if (!unrefined_.count(scene.get())) continue;
     const auto start = Clock::now();
-    RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
+    const std::string adjustment =
+        RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
     const int images = static_cast<int>(scene->NumRegImages());
     record_({"refine merged model", images, images, SecondsSince(start), true,
-             "tracks merged, global bundle adjustment"});
+             "tracks merged, global bundle adjustment: " + adjustment});
   }
   unrefined_.clear();
 }

@@ -223,9 +223,9 @@ class TmrMapperRun {
     task.reused = result.has_value();
     const std::string db = KernelModel(k) + ".db";
     std::string error;
-    if (!result && !WriteTaskDatabase(o_.database_path,
-                                      Ids(tree_, node.kernel_images), db,
-                                      &error)) {
+    if (!result &&
+        !WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images), db,
+                           &error)) {
       task.message = error;
     } else {
       if (!result) {
@@ -357,14 +357,17 @@ class TmrMapperRun {
       AppendReconstruction(leaf, model_from_leaf, model.get());
       ++merged;
     }
+    std::string adjustment;
     if (merged > 0) {
-      RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads),
-                        o_.refine_merged_models, model);
+      adjustment =
+          RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads),
+                            o_.refine_merged_models, model);
     }
     Record({"merge cluster " + std::to_string(k),
             static_cast<int>(tree_.kernels[k].cluster_images.size()),
             static_cast<int>(model->NumRegImages()), SecondsSince(start), true,
-            std::to_string(merged) + " leaf models"});
+            std::to_string(merged) + " leaf models" +
+                (adjustment.empty() ? "" : "; " + adjustment)});
     clusters_[k] = model;
   }
 

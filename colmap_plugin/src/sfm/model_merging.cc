@@ -201,11 +201,12 @@ void AppendReconstruction(const colmap::Reconstruction& source,
   }
 }
 
-bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
-                        colmap::IncrementalMapper* mapper) {
+std::string AdjustMergedBundle(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    colmap::IncrementalMapper* mapper) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
   const std::vector<colmap::image_t>& images = model.RegImageIds();
-  if (images.size() < 2) return false;
+  if (images.size() < 2) return "";
   mapper->ObservationManager().FilterObservationsWithNegativeDepth();
   colmap::BundleAdjustmentConfig config;
   for (const colmap::image_t id : images) config.AddImage(id);
@@ -216,7 +217,7 @@ bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
   colmap::BundleAdjuster adjuster(options, config);
   const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
   adjuster.SetUpProblem(&model, loss.get());
-  if (adjuster.Problem()->NumResiduals() == 0) return false;
+  if (adjuster.Problem()->NumResiduals() == 0) return "";
   ceres::Solver::Options solver =
       adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
   if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
@@ -226,11 +227,10 @@ bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
   solver.function_tolerance = 1e-6;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  VLOG(1) << summary.BriefReport();
-  return true;
+  return summary.BriefReport();
 }
 
-void RefineMergedModel(
+std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
     bool global_bundle_adjustment,
@@ -240,9 +240,12 @@ void RefineMergedModel(
   const auto triangulation = mapper_options.Triangulation();
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
-  if (global_bundle_adjustment) AdjustMergedBundle(mapper_options, &mapper);
+  std::string report;
+  if (global_bundle_adjustment)
+    report = AdjustMergedBundle(mapper_options, &mapper);
   mapper.FilterPoints(mapper_options.Mapper());
   mapper.EndReconstruction(/*discard=*/false);
+  return report;
 }
 
 }  // namespace tmr

@@ -72,15 +72,17 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // 1,000 images and runs its global adjustments to the iteration limit
 // (function tolerance 0); on a merged 1,087-image city that took 648 s and
 // left a median rotation error of 0.039 deg against the stock mapper's
-// 0.017. Returns false when there was nothing to adjust.
-bool AdjustMergedBundle(const colmap::IncrementalMapperOptions& mapper_options,
-                        colmap::IncrementalMapper* mapper);
+// 0.017. Returns Ceres' one-line report, empty when there was nothing to
+// adjust.
+std::string AdjustMergedBundle(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment
 // (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
-// registering images.
-void RefineMergedModel(
+// registering images. Returns the adjustment's report (AdjustMergedBundle).
+std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
     bool global_bundle_adjustment,
