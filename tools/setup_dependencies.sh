@@ -25,7 +25,7 @@ PACKAGES=(
   libfreeimage-dev libmetis-dev libsqlite3-dev sqlite3
   libboost-program-options-dev libboost-filesystem-dev libboost-graph-dev
   libboost-system-dev libsuitesparse-dev libgtest-dev libgmock-dev
-  libopencv-dev nlohmann-json3-dev
+  libopencv-dev nlohmann-json3-dev clang
 )
 
 log() { echo "[setup] $*"; }

@@ -15,16 +15,23 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
   if (!std::filesystem::exists(status)) Fail("no such file");
   if (std::filesystem::is_directory(status)) Fail("is a directory, not a file");
   Open(ReadOnlySqliteUri(path));
-  // A database with a -wal file on a read-only folder cannot be read
-  // through the WAL; it can as an immutable file.
+  // A throwing constructor runs no destructor: close the handle here.
   try {
-    HasTable("images");
-  } catch (const DatabaseError&) {
-    const int code = sqlite3_errcode(db_);
-    if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
+    // A database with a -wal file on a read-only folder cannot be read
+    // through the WAL; it can as an immutable file.
+    try {
+      HasTable("images");
+    } catch (const DatabaseError&) {
+      const int code = sqlite3_errcode(db_);
+      if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
+      sqlite3_close(db_);
+      db_ = nullptr;
+      Open(ReadOnlySqliteUri(path, /*force_immutable=*/true));
+    }
+  } catch (...) {
     sqlite3_close(db_);
     db_ = nullptr;
-    Open(ReadOnlySqliteUri(path, /*force_immutable=*/true));
+    throw;
   }
 }
 
