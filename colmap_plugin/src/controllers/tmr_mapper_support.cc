@@ -39,15 +39,15 @@ std::string RunFingerprint(const TmrMapperOptions& o,
   const MapperPassThroughOptions& m = o.mapper;
   std::ostringstream id;
   id.precision(17);
-  id << "database " << fs::weakly_canonical(o.database_path, ec).string()
-     << " " << size << " "
-     << time.time_since_epoch().count() << "\nmapper " << m.min_num_matches
-     << " " << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
-     << m.abs_pose_min_num_inliers << " " << m.filter_max_reproj_error << " "
-     << m.tri_min_angle << " " << m.ba_refine_focal_length << " "
-     << m.ba_refine_principal_point << " " << m.ba_refine_extra_params << " "
-     << m.ba_global_max_num_iterations << "\ntasks " << o.fix_base_in_leaves
-     << " " << o.task_ba_global_ratio << "\n"
+  id << "database " << fs::weakly_canonical(o.database_path, ec).string() << " "
+     << size << " " << time.time_since_epoch().count() << "\nmapper "
+     << m.min_num_matches << " " << m.ignore_watermarks << " "
+     << m.init_min_num_inliers << " " << m.abs_pose_min_num_inliers << " "
+     << m.filter_max_reproj_error << " " << m.tri_min_angle << " "
+     << m.ba_refine_focal_length << " " << m.ba_refine_principal_point << " "
+     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations
+     << "\ntasks " << o.fix_base_in_leaves << " " << o.task_ba_global_ratio
+     << "\n"
      << tree_json;
   return id.str();
 }

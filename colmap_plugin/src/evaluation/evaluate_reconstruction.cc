@@ -143,14 +143,19 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
       colmap::ComputeImageAlignmentError(model, reference, ref_from_model);
   std::vector<double> rotation, position;
   std::vector<Eigen::Vector3d> displaced_model, displaced_reference;
+  std::vector<std::pair<double, std::string>> displaced_names;
   for (size_t k = 0; k < errors.size(); ++k) {
     rotation.push_back(errors[k].rotation_error_deg);
     position.push_back(errors[k].proj_center_error / eval.scene_scale);
     if (position.back() > options.displaced_threshold) {
       displaced_model.push_back(model_centres[k]);
       displaced_reference.push_back(reference_centres[k]);
+      displaced_names.emplace_back(-position.back(), errors[k].image_name);
     }
   }
+  std::sort(displaced_names.begin(), displaced_names.end());
+  for (const auto& [error, name] : displaced_names)
+    eval.displaced_image_names.push_back(name);
   for (const colmap::image_t id : model.RegImageIds()) {
     const Eigen::Vector3d c =
         ref_from_model * model.Image(id).ProjectionCenter();

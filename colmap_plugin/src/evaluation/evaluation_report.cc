@@ -96,6 +96,11 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
     JsonStats(out, "position_error_relative", e.position_error);
     out << ", \"wrong_merge\": " << (e.wrong_merge ? "true" : "false")
         << ", \"displaced_images\": " << e.num_displaced_images
+        << ", \"displaced_image_names\": [";
+    for (size_t k = 0; k < e.displaced_image_names.size(); ++k) {
+      out << (k ? ", " : "") << JsonString(e.displaced_image_names[k]);
+    }
+    out << "]"
         << ", \"displacement_relative\": " << e.displacement
         << ", \"displacement_rotation_deg\": " << e.displacement_rotation_deg
         << ", \"track_length_histogram\": [";

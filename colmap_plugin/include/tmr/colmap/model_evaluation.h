@@ -53,6 +53,8 @@ struct ModelEvaluation {
 
   bool wrong_merge = false;
   int num_displaced_images = 0;
+  // Their names, most displaced first.
+  std::vector<std::string> displaced_image_names;
   // Median distance of the displaced rigid part from its true place, as a
   // share of the scene scale, and its rotation against the main part.
   double displacement = 0.0;
