@@ -1,7 +1,10 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // tree.json reading and writing (nlohmann::json, private to libtmr).
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
 
 #include "tmr/partition/tmr_tree.h"
@@ -62,11 +65,27 @@ json Parameters(const TmrTreeOptions& o) {
               o.leaf_clustering.sigma3, o.leaf_clustering.sigma4}}}}};
 }
 
-// Reads an optional value of the expected type.
+// Reads an optional value of the expected type. An integer must be a whole
+// number in T's range: nlohmann's conversion of 3e41 to int is undefined
+// behaviour (found by fuzz_tree_json).
 template <typename T>
 void Get(const json& object, const char* key, T* value) {
   if (!object.is_object() || !object.contains(key)) return;
-  *value = object.at(key).get<T>();
+  const json& v = object.at(key);
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    if (v.is_number()) {
+      const double d = v.get<double>();
+      if (!(d >= static_cast<double>(std::numeric_limits<T>::min()) &&
+            d <= static_cast<double>(std::numeric_limits<T>::max())) ||
+          (v.is_number_float() && d != std::floor(d))) {
+        throw std::runtime_error(std::string("malformed tree.json: \"") + key +
+                                 "\" is not an integer in range");
+      }
+      *value = v.is_number_float() ? static_cast<T>(d) : v.get<T>();
+      return;
+    }
+  }
+  *value = v.get<T>();
 }
 
 TmrTreeOptions ParametersFromJson(const json& p) {
@@ -181,7 +200,7 @@ TmrTree ReadTmrTreeJson(std::istream& in,
       throw std::runtime_error(
           "not a tmr tree (\"format\": \"tmr-tree\" missing)");
     }
-    tree.kernel_size = root.value("kernel_size", 0);
+    Get(root, "kernel_size", &tree.kernel_size);
     if (root.contains("parameters"))
       tree.options = ParametersFromJson(root.at("parameters"));
     for (const json& k : root.at("kernels")) {
@@ -198,7 +217,7 @@ TmrTree ReadTmrTreeJson(std::istream& in,
         node.ap_centres = vertices(k.at("ap_centres"));
       node.exemplar_score = k.value("exemplar_score", 0.0);
       node.origin = OriginFromName(k.value("origin", "layer"));
-      node.layer = k.value("layer", 0);
+      Get(k, "layer", &node.layer);
       for (const json& leaf : k.at("leaf_clusters"))
         node.leaf_clusters.push_back(vertices(leaf));
       node.cluster_images = node.kernel_images;

@@ -86,7 +86,14 @@ TEST(TmrTree, MalformedJsonIsAClearError) {
         "{\"format\": \"tmr-tree\", \"kernels\": [{\"exemplar\": 5}], "
         "\"unclustered\": []}",
         "{\"format\": \"tmr-tree\", \"kernels\": [], \"unclustered\": "
-        "[\"x\"]}"}) {
+        "[\"x\"]}",
+        // Integers out of range or with a fraction (found by fuzzing).
+        "{\"format\": \"tmr-tree\", \"kernel_size\": 3e41, \"kernels\": [], "
+        "\"unclustered\": []}",
+        "{\"format\": \"tmr-tree\", \"kernel_size\": 2.5, \"kernels\": [], "
+        "\"unclustered\": []}",
+        "{\"format\": \"tmr-tree\", \"parameters\": {\"seed\": -1}, "
+        "\"kernels\": [], \"unclustered\": []}"}) {
     std::istringstream in(text);
     EXPECT_THROW(ReadTmrTreeJson(in, {"a", "b"}), std::runtime_error) << text;
   }
