@@ -11,13 +11,13 @@
 #include <chrono>
 #include <filesystem>
 #include <mutex>
-#include <optional>
 #include <sstream>
 #include <thread>
 #include <unordered_set>
 
 #include "controllers/scene_assembly.h"
 #include "controllers/task_graph.h"
+#include "controllers/task_workspace.h"
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
@@ -41,11 +41,13 @@ class TmrMapperRun {
  public:
   TmrMapperRun(const TmrMapperOptions& options, TmrMapperReport* report,
                const std::function<void(const std::string&)>& progress)
-      : o_(options), report_(report), progress_(progress) {
+      : o_(options),
+        report_(report),
+        progress_(progress),
+        work_(fs::path(o_.output_path) / ".tmr_work") {
     threads_ = o_.num_threads > 0
                    ? o_.num_threads
                    : std::max(1u, std::thread::hardware_concurrency());
-    work_ = fs::path(o_.output_path) / ".tmr_work";
   }
 
   bool Run(std::string* error) {
@@ -66,17 +68,11 @@ class TmrMapperRun {
     untimed.timing = {};
     std::ostringstream partition;
     WriteTmrTreeJson(untimed, partition);
-    const std::string run_id = RunFingerprint(o_, partition.str());
-    const fs::path run_id_path = work_ / "run.id";
-    resuming_ = o_.resume && ReadFileToString(run_id_path.string()) == run_id;
-    if (resuming_) {
+    if (!work_.Open(RunFingerprint(o_, partition.str()), o_.resume))
+      return Fail("cannot write in '" + work_.folder().string() + "'", error);
+    if (work_.resuming()) {
       Progress("resuming: reusing the tasks an earlier run finished in " +
-               work_.string());
-    } else {
-      fs::remove_all(work_);
-      fs::create_directories(work_);
-      if (!WriteFileAtomically(run_id_path.string(), run_id))
-        return Fail("cannot write in '" + work_.string() + "'", error);
+               work_.folder().string());
     }
     if (!WriteFileAtomically((fs::path(o_.output_path) / "tree.json").string(),
                              json.str())) {
@@ -90,7 +86,7 @@ class TmrMapperRun {
       return Fail("the partition found no kernel", error);
 
     if (!RunTaskGraph(error)) return false;
-    SceneAssembler assembler(o_, cache_, (work_ / "merge.db").string(),
+    SceneAssembler assembler(o_, cache_, (work_.folder() / "merge.db").string(),
                              tree_.image_names, threads_,
                              [this](const TmrTaskReport& t) { Record(t); });
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
@@ -106,7 +102,7 @@ class TmrMapperRun {
     report_->total_seconds = SecondsSince(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
                         ReportJson(*report_));
-    if (!o_.keep_work) fs::remove_all(work_);
+    if (!o_.keep_work) fs::remove_all(work_.folder());
     return true;
   }
 
@@ -142,13 +138,8 @@ class TmrMapperRun {
     progress_(line.str());
   }
 
-  std::string KernelModel(int k) const {
-    return (work_ / ("kernel" + std::to_string(k))).string();
-  }
-  std::string LeafModel(int k, int l) const {
-    return (work_ / ("leaf" + std::to_string(k) + "_" + std::to_string(l)))
-        .string();
-  }
+  std::string KernelModel(int k) const { return work_.KernelModel(k); }
+  std::string LeafModel(int k, int l) const { return work_.LeafModel(k, l); }
 
   // Kernel, leaf and cluster-merge tasks as one graph: a leaf task waits
   // only for its kernel, a cluster merge only for its own leaves. Costs are
@@ -204,43 +195,30 @@ class TmrMapperRun {
     return options;
   }
 
-  // The result of a task an earlier, killed run finished (see Run), or
-  // nothing.
-  std::optional<ReconstructionTaskResult> Reused(const std::string& model) {
-    ReconstructionTaskResult result;
-    if (!resuming_ || !LoadTaskResult(model + ".result", &result) ||
-        (result.success && !fs::is_directory(model)))
-      return std::nullopt;
-    return result;
-  }
-
   void RunKernel(int k, int num_threads) {
     const TmrKernelNode& node = tree_.kernels[k];
     TmrTaskReport task;
     task.name = "kernel " + std::to_string(k);
     task.num_images = static_cast<int>(node.kernel_images.size());
-    std::optional<ReconstructionTaskResult> result = Reused(KernelModel(k));
-    task.reused = result.has_value();
-    const std::string db = KernelModel(k) + ".db";
+    // The exemplar first with COLMAP's choice of a second image (most
+    // matches, wide enough baseline), then with ours.
+    std::vector<std::pair<int, int>> pairs = {
+        {tree_.image_ids[node.exemplar], -1}};
+    for (const int second : node.second_images) {
+      pairs.emplace_back(tree_.image_ids[node.exemplar],
+                         tree_.image_ids[second]);
+    }
     std::string error;
-    if (!result &&
-        !WriteTaskDatabase(o_.database_path, Ids(tree_, node.kernel_images), db,
-                           &error)) {
+    const auto result = work_.RunOrReuse(
+        KernelModel(k), o_.database_path, Ids(tree_, node.kernel_images),
+        [&](const std::string& db) {
+          return RunReconstructionTask(TaskOptions(num_threads), db, "", pairs,
+                                       KernelModel(k));
+        },
+        &task.reused, &error);
+    if (!result) {
       task.message = error;
     } else {
-      if (!result) {
-        // The exemplar first with COLMAP's choice of a second image (most
-        // matches, wide enough baseline), then with ours.
-        std::vector<std::pair<int, int>> pairs = {
-            {tree_.image_ids[node.exemplar], -1}};
-        for (const int second : node.second_images) {
-          pairs.emplace_back(tree_.image_ids[node.exemplar],
-                             tree_.image_ids[second]);
-        }
-        result = RunReconstructionTask(TaskOptions(num_threads), db, "", pairs,
-                                       KernelModel(k));
-        SaveTaskResult(*result, KernelModel(k) + ".result");
-      }
       task.num_registered = result->num_registered;
       task.seconds = result->seconds;
       task.success = result->success;
@@ -287,20 +265,19 @@ class TmrMapperRun {
     task.num_images += static_cast<int>(images.size()) - base_registered_[k];
     for (const uint32_t id : Ids(tree_, node.leaf_clusters[l]))
       images.push_back(id);
-    std::optional<ReconstructionTaskResult> result = Reused(LeafModel(k, l));
-    task.reused = result.has_value();
-    const std::string db = LeafModel(k, l) + ".db";
     std::string error;
-    if (!result && !WriteTaskDatabase(o_.database_path, images, db, &error)) {
+    const auto result = work_.RunOrReuse(
+        LeafModel(k, l), o_.database_path, images,
+        [&](const std::string& db) {
+          auto mapper = TaskOptions(num_threads);
+          mapper.fix_existing_images = o_.fix_base_in_leaves;
+          return RunReconstructionTask(mapper, db, KernelModel(k), {},
+                                       LeafModel(k, l));
+        },
+        &task.reused, &error);
+    if (!result) {
       task.message = error;
     } else {
-      if (!result) {
-        auto mapper = TaskOptions(num_threads);
-        mapper.fix_existing_images = o_.fix_base_in_leaves;
-        result = RunReconstructionTask(mapper, db, KernelModel(k), {},
-                                       LeafModel(k, l));
-        SaveTaskResult(*result, LeafModel(k, l) + ".result");
-      }
       task.num_registered = result->num_registered - base_registered_[k];
       task.seconds = result->seconds;
       task.success = result->success;
@@ -317,7 +294,7 @@ class TmrMapperRun {
   // (COLMAP's Database class writes to the file it opens).
   std::shared_ptr<colmap::DatabaseCache> LoadDatabaseCache(std::string* error) {
     const std::vector<uint32_t>& ids = tree_.image_ids;
-    const std::string db = (work_ / "merge.db").string();
+    const std::string db = (work_.folder() / "merge.db").string();
     if (!WriteTaskDatabase(o_.database_path, ids, db, error)) return nullptr;
     colmap::Database database(db);
     return colmap::DatabaseCache::Create(database, o_.mapper.min_num_matches,
@@ -394,8 +371,7 @@ class TmrMapperRun {
   TmrMapperReport* report_;
   std::function<void(const std::string&)> progress_;
   int threads_ = 1;
-  fs::path work_;
-  bool resuming_ = false;  // finished tasks of an earlier run are reused
+  TaskWorkspace work_;  // task databases and models, reused by a rerun
   TmrTree tree_;
   // Written by the tasks of the graph (each entry by one task only).
   std::vector<char> kernel_ok_;

@@ -1,0 +1,49 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/task_workspace.h"
+
+#include "controllers/tmr_mapper_support.h"
+#include "sfm/task_database.h"
+#include "tmr/io/atomic_file.h"
+
+namespace tmr {
+
+namespace fs = std::filesystem;
+
+TaskWorkspace::TaskWorkspace(fs::path folder) : folder_(std::move(folder)) {}
+
+bool TaskWorkspace::Open(const std::string& run_id, bool resume) {
+  const fs::path run_id_path = folder_ / "run.id";
+  resuming_ = resume && ReadFileToString(run_id_path.string()) == run_id;
+  if (resuming_) return true;
+  fs::remove_all(folder_);
+  fs::create_directories(folder_);
+  return WriteFileAtomically(run_id_path.string(), run_id);
+}
+
+std::string TaskWorkspace::KernelModel(int k) const {
+  return (folder_ / ("kernel" + std::to_string(k))).string();
+}
+
+std::string TaskWorkspace::LeafModel(int k, int l) const {
+  return (folder_ / ("leaf" + std::to_string(k) + "_" + std::to_string(l)))
+      .string();
+}
+
+std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
+    const std::string& model, const std::string& source_database,
+    const std::vector<uint32_t>& images,
+    const std::function<ReconstructionTaskResult(const std::string&)>& run,
+    bool* reused, std::string* error) const {
+  ReconstructionTaskResult result;
+  *reused = resuming_ && LoadTaskResult(model + ".result", &result) &&
+            (!result.success || fs::is_directory(model));
+  if (*reused) return result;
+  const std::string db = model + ".db";
+  if (!WriteTaskDatabase(source_database, images, db, error))
+    return std::nullopt;
+  result = run(db);
+  SaveTaskResult(result, model + ".result");
+  return result;
+}
+
+}  // namespace tmr

@@ -1,0 +1,48 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sfm/reconstruction_task.h"
+
+namespace tmr {
+
+// The work folder of a tmr_mapper run (OUT/.tmr_work): one task database
+// and one model per kernel and leaf task, and a result record per finished
+// task, so that a rerun of a killed run reuses what it finished.
+class TaskWorkspace {
+ public:
+  explicit TaskWorkspace(std::filesystem::path folder);
+
+  // Resumes when `resume` and the folder holds a run with the same
+  // `run_id` (RunFingerprint); otherwise empties the folder and records
+  // `run_id`. False when the folder cannot be written.
+  bool Open(const std::string& run_id, bool resume);
+  bool resuming() const { return resuming_; }
+
+  const std::filesystem::path& folder() const { return folder_; }
+  std::string KernelModel(int k) const;
+  std::string LeafModel(int k, int l) const;
+
+  // The result of the task whose model is `model`: an earlier run's when
+  // resuming and its record and model are complete (`*reused` set), else
+  // `run` on a task database of `images` of `source_database` written
+  // beside the model, then recorded. Nothing, with `error`, when the task
+  // database cannot be written.
+  std::optional<ReconstructionTaskResult> RunOrReuse(
+      const std::string& model, const std::string& source_database,
+      const std::vector<uint32_t>& images,
+      const std::function<ReconstructionTaskResult(const std::string&)>& run,
+      bool* reused, std::string* error) const;
+
+ private:
+  std::filesystem::path folder_;
+  bool resuming_ = false;
+};
+
+}  // namespace tmr
