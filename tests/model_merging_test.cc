@@ -98,6 +98,31 @@ TEST_F(ModelMergingTest, DisjointHalvesOfAPlaceAlign) {
   }
 }
 
+// A model COLMAP's mapper has continued holds every image of the database,
+// most unregistered (Keep does the same); appended images must still be
+// registered there, with the source's poses and tracks.
+TEST_F(ModelMergingTest, AppendRegistersImagesTheTargetHoldsUnregistered) {
+  const std::vector<colmap::image_t> place = Images("place0/");
+  const size_t half = place.size() / 2;
+  colmap::Reconstruction target = Keep({place.begin(), place.begin() + half});
+  colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
+  source.Transform(kMoved);
+  ASSERT_TRUE(target.ExistsImage(place.back()));
+  const size_t points_before = target.NumPoints3D();
+
+  AppendReconstruction(source, colmap::Inverse(kMoved), &target);
+  EXPECT_EQ(target.NumRegImages(), place.size());
+  EXPECT_GT(target.NumPoints3D(), points_before);
+  for (size_t i = half; i < place.size(); ++i) {
+    const colmap::Image& image = target.Image(place[i]);
+    EXPECT_LT(
+        (image.ProjectionCenter() - gt_->Image(place[i]).ProjectionCenter())
+            .norm(),
+        1e-6);
+    EXPECT_GT(image.NumPoints3D(), 0u);
+  }
+}
+
 TEST_F(ModelMergingTest, AnUnlinkedPlaceStaysApart) {
   const colmap::Reconstruction target = Keep(Images("place0/"));
   const colmap::Reconstruction source = Keep(Images("place1/"));

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "controllers/scene_assembly.h"
 
+#include <colmap/estimators/alignment.h>
 #include <colmap/scene/reconstruction_manager.h>
 #include <colmap/sfm/incremental_mapper.h>
 
@@ -29,12 +30,68 @@ std::unordered_set<std::string> HeldImageNames(
   return held;
 }
 
+// Takes out of `scene` the images registered since `before` that see fewer
+// than `min_anchored` points also seen by an image of `before`: an image
+// placed mostly on points other new images triangulated moves with them,
+// and a group of such images can settle far off (tmr_synth city of 1,800:
+// eight side-facing photos 23 degrees off). Returns how many it took out.
+int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
+                           int min_anchored, colmap::Reconstruction* scene) {
+  std::vector<colmap::image_t> unanchored;
+  for (const colmap::image_t id : scene->RegImageIds()) {
+    if (before.count(id)) continue;
+    int anchored = 0;
+    for (const colmap::Point2D& point : scene->Image(id).Points2D()) {
+      if (!point.HasPoint3D()) continue;
+      for (const auto& element :
+           scene->Point3D(point.point3D_id).track.Elements()) {
+        if (before.count(element.image_id)) {
+          ++anchored;
+          break;
+        }
+      }
+    }
+    if (anchored < min_anchored) unanchored.push_back(id);
+  }
+  for (const colmap::image_t id : unanchored) scene->DeRegisterImage(id);
+  return static_cast<int>(unanchored.size());
+}
+
 }  // namespace
 
 void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
   std::sort(models->begin(), models->end(), [](const auto& a, const auto& b) {
     return a->NumRegImages() > b->NumRegImages();
   });
+}
+
+ClusterMerge MergeLeafModels(const std::string& kernel_model,
+                             const std::vector<std::string>& leaf_models,
+                             std::shared_ptr<const colmap::DatabaseCache> cache,
+                             const colmap::IncrementalMapperOptions& mapper,
+                             bool refine) {
+  ClusterMerge merge;
+  merge.model = std::make_shared<colmap::Reconstruction>();
+  merge.model->ReadBinary(kernel_model);
+  for (int l = 0; l < static_cast<int>(leaf_models.size()); ++l) {
+    colmap::Reconstruction leaf;
+    leaf.ReadBinary(leaf_models[l]);
+    colmap::Sim3d model_from_leaf;
+    if (!colmap::AlignReconstructionsViaReprojections(
+            leaf, *merge.model,
+            /*min_inlier_observations=*/0.3,
+            /*max_reproj_error=*/8.0, &model_from_leaf)) {
+      merge.left_out.push_back(l);
+      continue;
+    }
+    AppendReconstruction(leaf, model_from_leaf, merge.model.get());
+    ++merge.num_merged;
+  }
+  if (merge.num_merged > 0) {
+    merge.adjustment =
+        RefineMergedModel(std::move(cache), mapper, refine, merge.model);
+  }
+  return merge;
 }
 
 SceneAssembler::SceneAssembler(
@@ -119,6 +176,9 @@ void SceneAssembler::CompleteScenes(
     const auto start = Clock::now();
     const auto& scene = (*scenes)[i];
     const int before = static_cast<int>(scene->NumRegImages());
+    const std::vector<colmap::image_t>& held = scene->RegImageIds();
+    const std::unordered_set<colmap::image_t> before_ids(held.begin(),
+                                                         held.end());
     std::unordered_set<colmap::image_t> held_elsewhere;
     for (const std::string& name : HeldImageNames(*scenes, i)) {
       if (const colmap::Image* image = cache_->FindImageWithName(name))
@@ -144,11 +204,19 @@ void SceneAssembler::CompleteScenes(
       }
     }
     mapper.EndReconstruction(/*discard=*/false);
+    const int removed = RemoveUnanchoredImages(
+        before_ids, options.abs_pose_min_num_inliers, scene.get());
     const int added = static_cast<int>(scene->NumRegImages()) - before;
     if (added > 0) unrefined_.insert(scene.get());
     record_({"complete model " + std::to_string(i), before,
              static_cast<int>(scene->NumRegImages()), SecondsSince(start), true,
-             std::to_string(added) + " images added"});
+             std::to_string(added) + " images added" +
+                 (removed > 0
+                      ? "; " + std::to_string(removed) +
+                            " taken out again (fewer than " +
+                            std::to_string(options.abs_pose_min_num_inliers) +
+                            " points of the scene before)"
+                      : "")});
   }
   SortBySize(scenes);
 }

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
+#include <colmap/controllers/incremental_mapper.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
 
@@ -16,6 +17,26 @@ namespace tmr {
 
 // Orders models by registered images, largest first.
 void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models);
+
+// The image-cluster model of a kernel (paper Sec. 5.2): its kernel model
+// with each leaf model appended, then refined once.
+struct ClusterMerge {
+  std::shared_ptr<colmap::Reconstruction> model;
+  int num_merged = 0;         // leaf models appended
+  std::vector<int> left_out;  // indices of leaf models not aligned
+  std::string adjustment;     // summary of the refinement, if any
+};
+
+// Each leaf model extends a copy of the kernel model, but the mapper
+// normalises every model after global adjustment, so a leaf model has its
+// own frame: it is aligned on the kernel images both share with COLMAP's
+// reprojection-verified alignment and appended; a leaf that does not align
+// is left out.
+ClusterMerge MergeLeafModels(const std::string& kernel_model,
+                             const std::vector<std::string>& leaf_models,
+                             std::shared_ptr<const colmap::DatabaseCache> cache,
+                             const colmap::IncrementalMapperOptions& mapper,
+                             bool refine);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule

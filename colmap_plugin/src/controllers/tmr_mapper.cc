@@ -1,13 +1,9 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "tmr/colmap/tmr_mapper.h"
 
-#include <colmap/estimators/alignment.h>
-#include <colmap/scene/database.h>
 #include <colmap/scene/database_cache.h>
-#include <colmap/scene/reconstruction_manager.h>
 #include <glog/logging.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <mutex>
@@ -19,7 +15,6 @@
 #include "controllers/task_graph.h"
 #include "controllers/task_workspace.h"
 #include "controllers/tmr_mapper_support.h"
-#include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
 #include "sfm/task_database.h"
 #include "tmr/io/atomic_file.h"
@@ -153,9 +148,14 @@ class TmrMapperRun {
     clusters_.assign(num_kernels, nullptr);
     TaskGraph graph;
     std::string cache_error;
-    const int cache = graph.Add({"load correspondences", 1e12, {}, [&](int) {
-                                   cache_ = LoadDatabaseCache(&cache_error);
-                                 }});
+    const int cache =
+        graph.Add({"load correspondences", 1e12, {}, [&](int) {
+                     cache_ = LoadTaskDatabaseCache(
+                         o_.database_path, tree_.image_ids,
+                         (work_.folder() / "merge.db").string(),
+                         o_.mapper.min_num_matches, o_.mapper.ignore_watermarks,
+                         &cache_error);
+                   }});
     total_weight_ = done_weight_ = 0.0;
     for (int k = 0; k < num_kernels; ++k) {
       const TmrKernelNode& node = tree_.kernels[k];
@@ -181,8 +181,7 @@ class TmrMapperRun {
     if (!cache_) return Fail(cache_error, error);
     clusters_.erase(std::remove(clusters_.begin(), clusters_.end(), nullptr),
                     clusters_.end());
-    clusters_.insert(clusters_.end(), kernel_parts_.begin(),
-                     kernel_parts_.end());
+    clusters_.insert(clusters_.end(), part_models_.begin(), part_models_.end());
     return true;
   }
 
@@ -225,22 +224,28 @@ class TmrMapperRun {
       task.message = result->message;
       kernel_ok_[k] = result->success;
       base_registered_[k] = result->num_registered;
-      if (!result->part_models.empty()) {
-        task.message +=
-            "; the rest in " + std::to_string(result->part_models.size()) +
-            " more models of " +
-            std::to_string(result->num_registered_in_parts) + " images";
-        std::lock_guard<std::mutex> lock(mutex_);
-        for (const std::string& path : result->part_models) {
-          auto part = std::make_shared<colmap::Reconstruction>();
-          part->ReadBinary(path);
-          for (const colmap::image_t id : part->RegImageIds())
-            part_images_.insert(id);
-          kernel_parts_.push_back(part);
-        }
-      }
+      AdoptPartModels(*result, &task);
     }
     Record(task, task.num_images);
+  }
+
+  // The models a task made of the images its main model left; they join
+  // the scene models by the shared-track merge rule.
+  void AdoptPartModels(const ReconstructionTaskResult& result,
+                       TmrTaskReport* task) {
+    if (result.part_models.empty()) return;
+    task->message += "; the rest in " +
+                     std::to_string(result.part_models.size()) +
+                     " more models of " +
+                     std::to_string(result.num_registered_in_parts) + " images";
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const std::string& path : result.part_models) {
+      auto part = std::make_shared<colmap::Reconstruction>();
+      part->ReadBinary(path);
+      for (const colmap::image_t id : part->RegImageIds())
+        part_images_.insert(id);
+      part_models_.push_back(part);
+    }
   }
 
   void RunLeaf(int k, int l, int num_threads) {
@@ -282,6 +287,7 @@ class TmrMapperRun {
       task.seconds = result->seconds;
       task.success = result->success;
       task.message = result->message;
+      AdoptPartModels(*result, &task);
     }
     if (task.success) {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -290,23 +296,10 @@ class TmrMapperRun {
     Record(task, task.num_images);
   }
 
-  // One database cache of all images, from a copy of the input
-  // (COLMAP's Database class writes to the file it opens).
-  std::shared_ptr<colmap::DatabaseCache> LoadDatabaseCache(std::string* error) {
-    const std::vector<uint32_t>& ids = tree_.image_ids;
-    const std::string db = (work_.folder() / "merge.db").string();
-    if (!WriteTaskDatabase(o_.database_path, ids, db, error)) return nullptr;
-    colmap::Database database(db);
-    return colmap::DatabaseCache::Create(database, o_.mapper.min_num_matches,
-                                         o_.mapper.ignore_watermarks, {});
-  }
-
   // Merges the leaf models of kernel k into its image-cluster model.
   void MergeCluster(int k, int num_threads) {
     if (!kernel_ok_[k] || !cache_) return;
     const auto start = Clock::now();
-    auto model = std::make_shared<colmap::Reconstruction>();
-    model->ReadBinary(KernelModel(k));
     std::vector<int> leaves;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -314,38 +307,22 @@ class TmrMapperRun {
         if (kernel == k) leaves.push_back(l);
     }
     std::sort(leaves.begin(), leaves.end());
-    int merged = 0;
-    for (const int l : leaves) {
-      colmap::Reconstruction leaf;
-      leaf.ReadBinary(LeafModel(k, l));
-      // The mapper normalises every model after global bundle adjustment,
-      // so even with fixed kernel poses a leaf model has its own frame:
-      // align it on the kernel images both share, with COLMAP's own
-      // reprojection-verified alignment.
-      colmap::Sim3d model_from_leaf;
-      if (!colmap::AlignReconstructionsViaReprojections(
-              leaf, *model,
-              /*min_inlier_observations=*/0.3,
-              /*max_reproj_error=*/8.0, &model_from_leaf)) {
-        Progress("leaf " + std::to_string(k) + "." + std::to_string(l) +
-                 ": cannot be aligned to its kernel, left out");
-        continue;
-      }
-      AppendReconstruction(leaf, model_from_leaf, model.get());
-      ++merged;
-    }
-    std::string adjustment;
-    if (merged > 0) {
-      adjustment =
-          RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads),
-                            o_.refine_merged_models, model);
+    std::vector<std::string> leaf_models;
+    for (const int l : leaves) leaf_models.push_back(LeafModel(k, l));
+    const ClusterMerge merge = MergeLeafModels(
+        KernelModel(k), leaf_models, cache_,
+        ColmapOptions(o_.mapper, num_threads), o_.refine_merged_models);
+    for (const int i : merge.left_out) {
+      Progress("leaf " + std::to_string(k) + "." + std::to_string(leaves[i]) +
+               ": cannot be aligned to its kernel, left out");
     }
     Record({"merge cluster " + std::to_string(k),
             static_cast<int>(tree_.kernels[k].cluster_images.size()),
-            static_cast<int>(model->NumRegImages()), SecondsSince(start), true,
-            std::to_string(merged) + " leaf models" +
-                (adjustment.empty() ? "" : "; " + adjustment)});
-    clusters_[k] = model;
+            static_cast<int>(merge.model->NumRegImages()), SecondsSince(start),
+            true,
+            std::to_string(merge.num_merged) + " leaf models" +
+                (merge.adjustment.empty() ? "" : "; " + merge.adjustment)});
+    clusters_[k] = merge.model;
   }
 
   bool WriteModels(
@@ -377,9 +354,9 @@ class TmrMapperRun {
   std::vector<char> kernel_ok_;
   std::vector<int> base_registered_;  // images registered by each kernel task
   std::vector<std::shared_ptr<colmap::Reconstruction>> clusters_;
-  // Models of kernel images their kernel's model left out; under mutex_.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> kernel_parts_;
-  // Their images (under mutex_), left out of the leaf tasks.
+  // Models of the images a task's main model left out; under mutex_.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> part_models_;
+  // Their images (under mutex_); a kernel's are left out of its leaf tasks.
   std::unordered_set<uint32_t> part_images_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
   // (kernel, leaf) of every leaf task that produced a model; under mutex_.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_set>
 
 namespace tmr {
@@ -154,7 +155,8 @@ ModelAlignment AlignModelsBySharedTracks(
   if (other_fit <= options.min_shared_tracks ||
       other_fit < options.min_relative_support * anchor_rate * others) {
     std::ostringstream reason;
-    reason.precision(2);
+    reason << std::fixed;
+    reason.precision(0);
     reason << "the similarity fits the anchor image (" << anchor_rate * 100
            << "% of its tracks reproject within "
            << options.max_reprojection_error_px << " px) but only " << other_fit
@@ -177,18 +179,30 @@ void AppendReconstruction(const colmap::Reconstruction& source,
   }
   std::unordered_set<colmap::image_t> added;
   for (const colmap::image_t image_id : moved.RegImageIds()) {
-    if (target->ExistsImage(image_id)) continue;
     const colmap::Image& image = moved.Image(image_id);
-    colmap::Image copy;
-    copy.SetImageId(image_id);
-    copy.SetName(image.Name());
-    copy.SetCameraId(image.CameraId());
-    copy.CamFromWorld() = image.CamFromWorld();
-    std::vector<Eigen::Vector2d> xy;
-    xy.reserve(image.NumPoints2D());
-    for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
-    copy.SetPoints2D(xy);
-    target->AddImage(std::move(copy));
+    if (target->ExistsImage(image_id)) {
+      // A model a mapper has continued holds every image of the database,
+      // most unregistered; such an image takes the source's pose.
+      if (target->IsImageRegistered(image_id)) continue;
+      colmap::Image& held = target->Image(image_id);
+      if (held.NumPoints2D() != image.NumPoints2D())
+        throw std::logic_error(
+            "AppendReconstruction: the models disagree on "
+            "the keypoints of " +
+            image.Name());
+      held.CamFromWorld() = image.CamFromWorld();
+    } else {
+      colmap::Image copy;
+      copy.SetImageId(image_id);
+      copy.SetName(image.Name());
+      copy.SetCameraId(image.CameraId());
+      copy.CamFromWorld() = image.CamFromWorld();
+      std::vector<Eigen::Vector2d> xy;
+      xy.reserve(image.NumPoints2D());
+      for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
+      copy.SetPoints2D(xy);
+      target->AddImage(std::move(copy));
+    }
     target->RegisterImage(image_id);
     added.insert(image_id);
   }

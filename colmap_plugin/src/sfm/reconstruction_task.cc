@@ -89,7 +89,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 
 namespace {
 
-// Smallest model worth keeping from the rest of a kernel.
+// Smallest model worth keeping from the rest of a task.
 constexpr int kMinPartImages = 3;
 
 // A model with this share of the task's images ends the search for an
@@ -192,7 +192,7 @@ ReconstructionTaskResult RunReconstructionTask(
     result.success = WriteModelAtomically(*best, output_model);
     result.message = result.success ? how : "cannot write " + output_model;
   }
-  if (result.success && base_model.empty() &&
+  if (result.success &&
       result.num_registered + kMinPartImages <= result.num_images) {
     ReconstructRest(mapper_options, task_database, images, *best, output_model,
                     &result);

@@ -17,8 +17,8 @@ struct ReconstructionTaskResult {
   int num_registered = 0;  // registered in the output model
   double seconds = 0.0;
   std::string message;  // why it failed, or which initial pair worked
-  // Kernel tasks: models of the images the main model could not register,
-  // written to output_model + "_part1", "_part2", ...
+  // Models of the images the main model could not register, written to
+  // output_model + "_part1", "_part2", ...
   std::vector<std::string> part_models;
   int num_registered_in_parts = 0;
 };
@@ -44,7 +44,12 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // only its full scene links, and their models may still merge later.
 // Leaf task: `base_model` is the kernel's model; the mapper extends a copy
 // of it with the task's other images, keeping the base poses fixed when
-// mapper_options.fix_existing_images is set.
+// mapper_options.fix_existing_images is set. Leaf images linked to the
+// kernel only through other leaf images cannot be registered when those
+// see no point of the base in common (a registered image needs points that
+// two registered images see): the images it leaves are reconstructed on
+// their own as for a kernel (tmr_synth city of 1,800: 68 of a leaf's 70
+// images).
 ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalMapperOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,

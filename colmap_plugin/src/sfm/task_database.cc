@@ -79,4 +79,14 @@ bool WriteTaskDatabase(const std::string& source_db,
   return true;
 }
 
+std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
+    const std::string& source_db, const std::vector<uint32_t>& image_ids,
+    const std::string& task_db, int min_num_matches, bool ignore_watermarks,
+    std::string* error) {
+  if (!WriteTaskDatabase(source_db, image_ids, task_db, error)) return nullptr;
+  colmap::Database database(task_db);
+  return colmap::DatabaseCache::Create(database, min_num_matches,
+                                       ignore_watermarks, {});
+}
+
 }  // namespace tmr

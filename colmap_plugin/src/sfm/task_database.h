@@ -1,7 +1,10 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
+#include <colmap/scene/database_cache.h>
+
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,5 +21,14 @@ namespace tmr {
 bool WriteTaskDatabase(const std::string& source_db,
                        const std::vector<uint32_t>& image_ids,
                        const std::string& task_db, std::string* error);
+
+// COLMAP's in-memory correspondences of the given images, loaded from a
+// task database written to `task_db` (COLMAP's Database class writes to the
+// file it opens, so it never opens the input). Null with a reason in
+// `error`.
+std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
+    const std::string& source_db, const std::vector<uint32_t>& image_ids,
+    const std::string& task_db, int min_num_matches, bool ignore_watermarks,
+    std::string* error);
 
 }  // namespace tmr
