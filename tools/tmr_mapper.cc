@@ -49,7 +49,13 @@ int main(int argc, char** argv) {
   tmr::TmrMapperReport report;
   try {
     // project.ini: the effective options, as COLMAP writes them.
-    fs::create_directories(o.output_path);
+    std::error_code ec;
+    fs::create_directories(o.output_path, ec);
+    if (ec) {
+      std::cerr << "tmr_mapper: error: cannot create output folder '"
+                << o.output_path << "': " << ec.message() << "\n";
+      return 1;
+    }
     tmr::WriteFileAtomically((fs::path(o.output_path) / "project.ini").string(),
                              tmr::ProjectIni(desc, vm));
     if (!tmr::RunTmrMapper(o, &report, &error, progress)) {

@@ -57,7 +57,12 @@ int main(int argc, char** argv) {
     std::cout << "read " << graph.NumImages() << " images and "
               << graph.NumPairs() << " verified pairs in " << read_s << " s\n";
     const tmr::TmrTree tree = tmr::BuildTmrTree(graph, tree_options);
-    fs::create_directories(output_path);
+    std::error_code ec;
+    fs::create_directories(output_path, ec);
+    if (ec) {
+      throw std::runtime_error("cannot create output folder '" + output_path +
+                               "': " + ec.message());
+    }
     std::ostringstream json;
     tmr::WriteTmrTreeJson(tree, json);
     const std::string tree_path =

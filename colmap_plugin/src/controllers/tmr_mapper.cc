@@ -50,6 +50,7 @@ class TmrMapperRun {
     const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
     if (graph.NumImages() == 0)
       return Fail("the database has no images", error);
+    if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
     if (graph.NumPairs() == 0)
       return Fail("the database has no verified image pairs", error);
     tree_ = BuildTmrTree(graph, o_.tree);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -100,7 +101,7 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("num_threads must be -1 or >= 1");
   if (merge_min_shared_tracks < 3)
     return fail("merge_min_shared_tracks must be >= 3");
-  if (!(task_ba_global_ratio > 1.0))
+  if (!(task_ba_global_ratio > 1.0 && std::isfinite(task_ba_global_ratio)))
     return fail("Tmr.task_ba_global_ratio must be > 1");
   if (mapper.min_num_matches < 1)
     return fail("Mapper.min_num_matches must be >= 1");

@@ -22,6 +22,13 @@ bool WriteTaskDatabase(const std::string& source_db,
                        const std::vector<uint32_t>& image_ids,
                        const std::string& task_db, std::string* error);
 
+// Checks what COLMAP's Database class reads but tmr's own reader does not:
+// every keypoint blob holds rows x cols floats with 2, 4 or 6 columns, and
+// every camera has a known model, a positive size and as many parameters
+// as its model needs. COLMAP stops on a failed check instead. False with
+// the first problem in `error`.
+bool CheckKeypointsAndCameras(const std::string& source_db, std::string* error);
+
 // COLMAP's in-memory correspondences of the given images, loaded from a
 // task database written to `task_db` (COLMAP's Database class writes to the
 // file it opens, so it never opens the input). Null with a reason in

@@ -14,7 +14,8 @@ bool AffinityPropagationOptions::Check(std::string* error) const {
     if (error) *error = message;
     return false;
   };
-  if (damping < 0.5 || damping >= 1) return fail("damping must be in [0.5, 1)");
+  if (!(damping >= 0.5 && damping < 1))
+    return fail("damping must be in [0.5, 1)");
   if (max_iterations < 1 || convergence_iterations < 1) {
     return fail("iteration counts must be >= 1");
   }
@@ -23,8 +24,10 @@ bool AffinityPropagationOptions::Check(std::string* error) const {
 
 bool ExemplarOptions::Check(std::string* error) const {
   if (!ap.Check(error)) return false;
-  if (beta1 < 0 || beta2 < 0 || num_second_images < 1) {
-    if (error) *error = "beta1, beta2 must be >= 0 and num_second_images >= 1";
+  if (!(beta1 >= 0 && std::isfinite(beta1)) ||
+      !(beta2 >= 0 && std::isfinite(beta2)) || num_second_images < 1) {
+    if (error)
+      *error = "beta1, beta2 must be finite and >= 0, num_second_images >= 1";
     return false;
   }
   return true;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "partition/test_graphs.h"
 
 namespace tmr {
@@ -68,6 +70,16 @@ TEST(SelectExemplar, PicksTheHubAndAWideBaselinePartner) {
   EXPECT_EQ(std::count(seed.second_images.begin(), seed.second_images.end(), 5),
             0);
   EXPECT_FALSE(seed.ap_centres.empty());
+}
+
+TEST(ExemplarOptions, RejectsNanAndInfinity) {
+  ExemplarOptions options;
+  EXPECT_TRUE(options.Check(nullptr));
+  options.beta1 = std::nan("");
+  EXPECT_FALSE(options.Check(nullptr));
+  options = ExemplarOptions();
+  options.ap.damping = std::nan("");
+  EXPECT_FALSE(options.Check(nullptr));
 }
 
 }  // namespace

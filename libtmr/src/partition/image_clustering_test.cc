@@ -56,11 +56,9 @@ TEST(MultiLayerShortestPath,
 // that every cluster is connected through its own images.
 TEST(MultiLayerShortestPath, PathThroughAnotherClusterJoinsThatCluster) {
   enum { E1, K2, E2, X, Y, N };
-  const ImageGraph d(N, {{E1, K2, 0.1},
-                         {K2, E2, 0.5},
-                         {K2, X, 0.1},
-                         {X, Y, 0.1},
-                         {E1, Y, 0.9}});
+  const ImageGraph d(
+      N,
+      {{E1, K2, 0.1}, {K2, E2, 0.5}, {K2, X, 0.1}, {X, Y, 0.1}, {E1, Y, 0.9}});
   const ImageClusters result =
       AssignByMultiLayerShortestPath(d, {{E1}, {K2, E2}}, {E1, E2}, {});
   EXPECT_EQ(result.cluster[X], 1);

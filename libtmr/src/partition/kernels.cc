@@ -216,11 +216,14 @@ bool KernelOptions::Check(std::string* error) const {
     return false;
   };
   if (max_kernel_size < 2) return fail("max_kernel_size must be >= 2");
-  if (kernel_fraction <= 0 || kernel_fraction > 1)
+  // Written so that NaN fails every test.
+  if (!(kernel_fraction > 0 && kernel_fraction <= 1))
     return fail("kernel_fraction must be in (0, 1]");
-  if (alpha < 1) return fail("alpha must be >= 1");
+  if (!(alpha >= 1 && std::isfinite(alpha)))
+    return fail("alpha must be >= 1 and finite");
   if (num_layers < 1) return fail("num_layers must be >= 1");
-  if (epsilon < 0) return fail("epsilon must be >= 0");
+  if (!(epsilon >= 0 && std::isfinite(epsilon)))
+    return fail("epsilon must be >= 0 and finite");
   if (min_kernel_size < 2 || min_kernel_size > max_kernel_size) {
     return fail("min_kernel_size must be in [2, max_kernel_size]");
   }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "partition/test_graphs.h"
 
 namespace tmr {
@@ -19,6 +21,18 @@ TEST(KernelOptions, KernelSizeAndCheck) {
   options = KernelOptions();
   options.num_layers = 0;
   EXPECT_FALSE(options.Check());
+  // NaN and infinity fail every range test (a command line can give them).
+  for (const double bad : {std::nan(""), HUGE_VAL}) {
+    options = KernelOptions();
+    options.epsilon = bad;
+    EXPECT_FALSE(options.Check());
+    options = KernelOptions();
+    options.alpha = bad;
+    EXPECT_FALSE(options.Check());
+    options = KernelOptions();
+    options.kernel_fraction = bad;
+    EXPECT_FALSE(options.Check());
+  }
 }
 
 // Two dense groups of 18 (m = 15, kernels of 15..22 images) with 30 leaves

@@ -270,8 +270,13 @@ class RadialAgglomeration {
 }  // namespace
 
 bool RadialAgglomerateOptions::Check(std::string* error) const {
-  if (r <= 0 || sigma1 < 0 || sigma2 < 0 || sigma3 < 0 || sigma4 < 0) {
-    if (error) *error = "r must be > 0 and the sigmas >= 0";
+  const auto finite_at_least = [](double x, double low) {
+    return x >= low && std::isfinite(x);  // false for NaN
+  };
+  if (!(r > 0 && std::isfinite(r)) || !finite_at_least(sigma1, 0) ||
+      !finite_at_least(sigma2, 0) || !finite_at_least(sigma3, 0) ||
+      !finite_at_least(sigma4, 0)) {
+    if (error) *error = "r must be > 0 and the sigmas >= 0, all finite";
     return false;
   }
   return true;

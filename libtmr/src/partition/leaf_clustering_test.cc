@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <queue>
 #include <random>
 #include <set>
@@ -115,6 +117,19 @@ TEST(RadialAgglomerateClustering, DetachedLeavesFormTheirOwnCluster) {
       RadialAgglomerateClustering(d, {0}, {1, 2, 3, 4}, 10, {});
   EXPECT_EQ(clusters, (std::vector<std::vector<int>>{{1, 2}, {3, 4}}));
   EXPECT_TRUE(RadialAgglomerateClustering(d, {0}, {}, 10, {}).empty());
+}
+
+TEST(RadialAgglomerateOptions, RejectsNanAndInfinity) {
+  RadialAgglomerateOptions options;
+  EXPECT_TRUE(options.Check(nullptr));
+  options.r = std::nan("");
+  EXPECT_FALSE(options.Check(nullptr));
+  options = RadialAgglomerateOptions();
+  options.r = HUGE_VAL;  // e = r * m would not fit an int
+  EXPECT_FALSE(options.Check(nullptr));
+  options = RadialAgglomerateOptions();
+  options.sigma3 = std::nan("");
+  EXPECT_FALSE(options.Check(nullptr));
 }
 
 }  // namespace

@@ -1,0 +1,199 @@
+# The bad-input matrix: every broken or degenerate input through
+# tmr_partition and tmr_mapper. Each run must end, within TIMEOUT seconds,
+# either with exit code 0 (valid but degenerate input: a correct result) or
+# with one line "TOOL: error: ..." on standard error and a non-zero exit;
+# never with a signal, an abort or COLMAP's "Check failed". The input
+# database must be byte-identical afterwards.
+#   -DPARTITION=... -DMAPPER=... -DSYNTH=... -DSQLITE3=... -DWORK_DIR=...
+#   [-DPYTHON3=...] (for the locked-database case)
+cmake_minimum_required(VERSION 3.25)
+set(TIMEOUT 180)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+set(good ${WORK_DIR}/good.db)
+execute_process(
+  COMMAND ${SYNTH} --database_path ${good} --model_path ${WORK_DIR}/gt
+          --num_places 1 --num_unlinked_places 0 --cameras_per_place 20 --seed 3
+  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tmr_synth failed: ${err}")
+endif()
+
+set(failures "")
+set(num_cases 0)
+
+# Runs TOOL (partition or mapper) on DB with extra ARGS; EXPECT is "error",
+# "ok" or "any" (a clear error or a result, for inputs where either is
+# right, e.g. a locked database).
+function(run_case name tool db expect)
+  set(args ${ARGN})
+  if(NOT "--output_path" IN_LIST args)
+    list(APPEND args --output_path ${WORK_DIR}/out_${name})
+  endif()
+  if(tool STREQUAL "partition")
+    set(command ${PARTITION} --database_path ${db} --picture 0)
+    set(prefix "tmr_partition")
+  else()
+    set(command ${MAPPER} --database_path ${db})
+    if(NOT "--Mapper.num_threads" IN_LIST args)
+      list(APPEND args --Mapper.num_threads 2)
+    endif()
+    set(prefix "tmr_mapper")
+  endif()
+  set(hash_before "")
+  if(EXISTS ${db} AND NOT IS_DIRECTORY ${db})
+    file(SHA256 ${db} hash_before)
+  endif()
+  execute_process(COMMAND ${command} ${args} TIMEOUT ${TIMEOUT}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  math(EXPR n "${num_cases} + 1")
+  set(num_cases ${n} PARENT_SCOPE)
+  set(problem "")
+  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
+  list(LENGTH error_lines num_error_lines)
+  if(NOT rc MATCHES "^[0-9]+$")
+    set(problem "did not exit normally: ${rc}")
+  elseif(err MATCHES "Check failed|terminate called|Aborted|Segmentation|AddressSanitizer|runtime error")
+    set(problem "crashed or failed a check")
+  elseif(rc EQUAL 0 AND expect STREQUAL "error")
+    set(problem "exit 0, expected an error")
+  elseif(NOT rc EQUAL 0 AND expect STREQUAL "ok")
+    set(problem "exit ${rc}, expected a result")
+  elseif(NOT rc EQUAL 0 AND NOT (num_error_lines EQUAL 1 AND
+                                 err MATCHES "(^|\n)${prefix}: error: [^\n]+\n"))
+    set(problem "exit ${rc} without one clear error line")
+  endif()
+  if(hash_before)
+    file(SHA256 ${db} hash_after)
+    if(NOT hash_after STREQUAL hash_before)
+      set(problem "${problem} the input database changed")
+    endif()
+  endif()
+  string(REGEX REPLACE "\n$" "" shown "${err}")
+  if(problem)
+    message(STATUS "FAIL ${name} (${tool}): ${problem}\n    stderr: ${shown}")
+    set(failures "${failures} ${name}/${tool}" PARENT_SCOPE)
+  else()
+    string(REGEX MATCH "[^\n]*error:[^\n]*" shown_error "${err}")
+    message(STATUS "ok   ${name} (${tool}): exit ${rc} ${shown_error}")
+  endif()
+endfunction()
+
+# A copy of the good database changed by SQL.
+function(make_db name sql)
+  set(db ${WORK_DIR}/${name}.db)
+  file(COPY_FILE ${good} ${db})
+  execute_process(COMMAND ${SQLITE3} ${db} "${sql}" RESULT_VARIABLE rc
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "cannot make ${name}: ${err}")
+  endif()
+endfunction()
+
+function(run_both name expect)
+  run_case(${name} partition ${WORK_DIR}/${name}.db ${expect} ${ARGN})
+  run_case(${name} mapper ${WORK_DIR}/${name}.db ${expect} ${ARGN})
+  set(failures "${failures}" PARENT_SCOPE)
+  set(num_cases ${num_cases} PARENT_SCOPE)
+endfunction()
+
+# Files that are no database.
+file(WRITE ${WORK_DIR}/empty.db "")
+file(WRITE ${WORK_DIR}/text.db "this is not a database\n")
+string(REPEAT "SQLite format 3\\0" 300 junk)
+file(WRITE ${WORK_DIR}/header_only.db "${junk}")
+run_both(missing error)
+foreach(name empty text header_only)
+  run_both(${name} error)
+endforeach()
+run_case(folder partition ${WORK_DIR} error)
+
+# SQLite files with the wrong content.
+make_db(foreign_schema "DROP TABLE images; DROP TABLE cameras; DROP TABLE keypoints;
+  DROP TABLE descriptors; DROP TABLE matches; DROP TABLE two_view_geometries;
+  CREATE TABLE notes (x TEXT);")
+make_db(no_geometries "DROP TABLE two_view_geometries;")
+make_db(no_images_table "DROP TABLE images;")
+make_db(keypoints_truncated "UPDATE keypoints SET data = substr(data, 1, 7);")
+make_db(keypoints_rows_too_large "UPDATE keypoints SET rows = rows * 1000 WHERE image_id = 2;")
+make_db(matches_rows_too_large "UPDATE two_view_geometries SET rows = rows + 1000;")
+make_db(matches_truncated "UPDATE two_view_geometries SET data = substr(data, 1, 5);")
+make_db(match_beyond_keypoints "UPDATE two_view_geometries SET data = zeroblob(rows * 8)
+  WHERE pair_id = (SELECT MIN(pair_id) FROM two_view_geometries);
+  UPDATE keypoints SET rows = 0, data = NULL WHERE image_id = 1;")
+make_db(negative_image_id "PRAGMA ignore_check_constraints = ON; UPDATE images SET image_id = -5 WHERE image_id = 2;")
+make_db(huge_pair_id "INSERT INTO two_view_geometries (pair_id, rows, cols, data, config)
+  VALUES (9223372036854775807, 20, 2, zeroblob(160), 2);")
+make_db(pair_of_unknown_image "INSERT INTO two_view_geometries (pair_id, rows, cols, data, config)
+  VALUES (2147483647 * 1 + 99999, 20, 2, zeroblob(160), 2);")
+make_db(bad_camera_model "UPDATE cameras SET model = 99;")
+make_db(bad_camera_params "UPDATE cameras SET params = zeroblob(3);")
+foreach(name foreign_schema no_geometries no_images_table matches_rows_too_large
+        matches_truncated negative_image_id huge_pair_id pair_of_unknown_image)
+  run_both(${name} error)
+endforeach()
+# The partition reads no keypoints and no cameras: it may succeed.
+foreach(name keypoints_truncated keypoints_rows_too_large match_beyond_keypoints
+        bad_camera_model bad_camera_params)
+  run_case(${name} partition ${WORK_DIR}/${name}.db any)
+  run_case(${name} mapper ${WORK_DIR}/${name}.db error)
+endforeach()
+
+# Valid but degenerate.
+make_db(no_matches "DELETE FROM two_view_geometries; DELETE FROM matches;")
+make_db(single_image "DELETE FROM images WHERE image_id > 1;
+  DELETE FROM two_view_geometries; DELETE FROM matches;")
+make_db(no_images "DELETE FROM images; DELETE FROM two_view_geometries; DELETE FROM matches;")
+make_db(weak_pairs_only "UPDATE two_view_geometries SET rows = 3, data = substr(data, 1, 24);")
+# The partition of images without pairs is all unclustered images, a
+# correct result; a mapper run has nothing to reconstruct.
+foreach(name no_matches single_image weak_pairs_only)
+  run_case(${name} partition ${WORK_DIR}/${name}.db ok)
+  run_case(${name} mapper ${WORK_DIR}/${name}.db error)
+endforeach()
+run_both(no_images error)
+
+# Output locations and options (on the good database).
+run_case(output_under_a_file mapper ${good} error --output_path ${good}/out)
+run_case(output_in_proc mapper ${good} error --output_path /proc/tmr_out)
+run_case(output_under_a_file partition ${good} error --output_path ${good}/out)
+run_case(missing_image_folder mapper ${good} error --image_path ${WORK_DIR}/no_photos)
+run_case(negative_kernel_size partition ${good} error --Tmr.max_kernel_size -3)
+run_case(negative_kernel_size mapper ${good} error --Tmr.max_kernel_size -3)
+run_case(alpha_below_one partition ${good} error --Tmr.alpha 0.5)
+run_case(zero_layers mapper ${good} error --Tmr.kernel_layers 0)
+run_case(nan_epsilon partition ${good} error --Tmr.epsilon nan)
+run_case(text_for_number mapper ${good} error --Mapper.num_threads many)
+run_case(zero_threads mapper ${good} error --Mapper.num_threads 0)
+run_case(huge_number partition ${good} error --Tmr.kernel_layers 99999999999999999999)
+run_case(unknown_flag mapper ${good} error --Tmr.no_such_option 1)
+run_case(negative_min_matches partition ${good} error --min_num_matches -1)
+
+# A database another process holds an exclusive lock on: a clear error or
+# a result, within the timeout, never a hang.
+if(PYTHON3)
+  file(COPY_FILE ${good} ${WORK_DIR}/locked.db)
+  execute_process(COMMAND ${PYTHON3} -c
+    "import sqlite3,subprocess,sys,time
+c = sqlite3.connect(sys.argv[1], isolation_level=None)
+c.execute('BEGIN EXCLUSIVE')
+c.execute('UPDATE images SET name = name')
+r = subprocess.run(sys.argv[2:], capture_output=True, text=True, timeout=${TIMEOUT})
+sys.stderr.write(r.stderr)
+sys.exit(r.returncode if r.returncode >= 0 else 128 - r.returncode)"
+    ${WORK_DIR}/locked.db ${PARTITION} --database_path ${WORK_DIR}/locked.db
+    --output_path ${WORK_DIR}/out_locked --picture 0
+    RESULT_VARIABLE rc ERROR_VARIABLE err)
+  math(EXPR num_cases "${num_cases} + 1")
+  if(rc GREATER 1 OR err MATCHES "Check failed|terminate called|Segmentation")
+    message(STATUS "FAIL locked (partition): exit ${rc}: ${err}")
+    set(failures "${failures} locked/partition")
+  else()
+    message(STATUS "ok   locked (partition): exit ${rc} ${err}")
+  endif()
+endif()
+
+if(failures)
+  message(FATAL_ERROR "bad-input cases failed:${failures}")
+endif()
+message(STATUS "all ${num_cases} bad-input cases ended cleanly")
