@@ -27,6 +27,12 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "ignore watermark pairs");
   add("Mapper.init_min_num_inliers", &o->mapper.init_min_num_inliers,
       "initial pair inliers");
+  add("Mapper.init_max_forward_motion", &o->mapper.init_max_forward_motion,
+      "initial pair: largest forward share of the motion");
+  add("Mapper.init_min_tri_angle", &o->mapper.init_min_tri_angle,
+      "initial pair: smallest median triangulation angle (deg)");
+  add("Mapper.filter_min_tri_angle", &o->mapper.filter_min_tri_angle,
+      "smallest triangulation angle of a kept point (deg)");
   add("Mapper.abs_pose_min_num_inliers", &o->mapper.abs_pose_min_num_inliers,
       "PnP inliers");
   add("Mapper.filter_max_reproj_error", &o->mapper.filter_max_reproj_error,

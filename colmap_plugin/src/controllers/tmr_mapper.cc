@@ -85,15 +85,8 @@ class TmrMapperRun {
     SceneAssembler assembler(o_, cache_, (work_.folder() / "merge.db").string(),
                              tree_.image_names, threads_,
                              [this](const TmrTaskReport& t) { Record(t); });
-    std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
-        assembler.MergeScenes(clusters_);
-    if (o_.complete_models) {
-      assembler.CompleteScenes(&scenes);
-      // New models from what is left may overlap the others.
-      if (assembler.ReconstructLeftovers(&scenes))
-        scenes = assembler.MergeScenes(scenes);
-    }
-    assembler.RefineMergedScenes(scenes);
+    const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
+        assembler.Assemble(clusters_);
     if (!WriteModels(scenes, error)) return false;
     report_->total_seconds = SecondsSince(start);
     WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),

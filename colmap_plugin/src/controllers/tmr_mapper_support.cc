@@ -21,6 +21,9 @@ colmap::IncrementalMapperOptions ColmapOptions(
   o.ignore_watermarks = m.ignore_watermarks;
   o.mapper.init_min_num_inliers = m.init_min_num_inliers;
   o.mapper.abs_pose_min_num_inliers = m.abs_pose_min_num_inliers;
+  o.mapper.init_max_forward_motion = m.init_max_forward_motion;
+  o.mapper.init_min_tri_angle = m.init_min_tri_angle;
+  o.mapper.filter_min_tri_angle = m.filter_min_tri_angle;
   o.mapper.filter_max_reproj_error = m.filter_max_reproj_error;
   o.triangulation.min_angle = m.tri_min_angle;
   o.ba_refine_focal_length = m.ba_refine_focal_length;
@@ -46,9 +49,10 @@ std::string RunFingerprint(const TmrMapperOptions& o,
      << m.init_min_num_inliers << " " << m.abs_pose_min_num_inliers << " "
      << m.filter_max_reproj_error << " " << m.tri_min_angle << " "
      << m.ba_refine_focal_length << " " << m.ba_refine_principal_point << " "
-     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations
-     << "\ntasks " << o.fix_base_in_leaves << " " << o.task_ba_global_ratio
-     << "\n"
+     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations << " "
+     << m.init_max_forward_motion << " " << m.init_min_tri_angle << " "
+     << m.filter_min_tri_angle << "\ntasks " << o.fix_base_in_leaves << " "
+     << o.task_ba_global_ratio << "\n"
      << tree_json;
   return id.str();
 }
@@ -105,6 +109,17 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("Tmr.task_ba_global_ratio must be > 1");
   if (mapper.min_num_matches < 1)
     return fail("Mapper.min_num_matches must be >= 1");
+  if (!(mapper.init_max_forward_motion >= 0 &&
+        mapper.init_max_forward_motion <= 1))
+    return fail("Mapper.init_max_forward_motion must be in [0, 1]");
+  if (!(mapper.init_min_tri_angle >= 0 && mapper.init_min_tri_angle < 180) ||
+      !(mapper.filter_min_tri_angle >= 0 && mapper.filter_min_tri_angle < 180))
+    return fail("Mapper.*_tri_angle must be in [0, 180)");
+  if (mapper.init_min_num_inliers < 1 || mapper.abs_pose_min_num_inliers < 1 ||
+      mapper.ba_global_max_num_iterations < 1)
+    return fail("Mapper.*_min_num_inliers and iterations must be >= 1");
+  if (!(mapper.filter_max_reproj_error > 0) || !(mapper.tri_min_angle > 0))
+    return fail("Mapper.filter_max_reproj_error and tri_min_angle must be > 0");
   return match_graph.Check(error) && tree.Check(error);
 }
 

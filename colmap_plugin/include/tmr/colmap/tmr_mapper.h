@@ -13,9 +13,15 @@ namespace tmr {
 // COLMAP mapper options that tmr_mapper passes through (--Mapper.*); the
 // defaults are COLMAP's.
 struct MapperPassThroughOptions {
-  int min_num_matches = 15;                // --Mapper.min_num_matches
-  bool ignore_watermarks = false;          // --Mapper.ignore_watermarks
-  int init_min_num_inliers = 100;          // --Mapper.init_min_num_inliers
+  int min_num_matches = 15;        // --Mapper.min_num_matches
+  bool ignore_watermarks = false;  // --Mapper.ignore_watermarks
+  int init_min_num_inliers = 100;  // --Mapper.init_min_num_inliers
+  // Initial pair: at most this forward share of the motion (|t_z|), at
+  // least this median triangulation angle (degrees). Photos taken walking
+  // straight ahead need 1 and a few degrees.
+  double init_max_forward_motion = 0.95;   // --Mapper.init_max_forward_motion
+  double init_min_tri_angle = 16.0;        // --Mapper.init_min_tri_angle
+  double filter_min_tri_angle = 1.5;       // --Mapper.filter_min_tri_angle
   int abs_pose_min_num_inliers = 30;       // --Mapper.abs_pose_min_num_inliers
   double filter_max_reproj_error = 4.0;    // --Mapper.filter_max_reproj_error
   double tri_min_angle = 1.5;              // --Mapper.tri_min_angle
