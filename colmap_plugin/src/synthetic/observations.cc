@@ -53,7 +53,11 @@ class PointGrid {
     return static_cast<int>(std::floor(v / kCellSize));
   }
   static int64_t Key(int x, int y) {
-    return (static_cast<int64_t>(x) << 32) ^ static_cast<uint32_t>(y);
+    // Two's-complement bits of x and y side by side (shifting a negative
+    // int64_t is undefined behaviour; UBSan found it).
+    return static_cast<int64_t>(
+        (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) |
+        static_cast<uint32_t>(y));
   }
   std::unordered_map<int64_t, std::vector<int>> cells_;
 };
