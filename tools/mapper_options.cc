@@ -27,6 +27,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "ignore watermark pairs");
   add("Mapper.init_min_num_inliers", &o->mapper.init_min_num_inliers,
       "initial pair inliers");
+  add("Mapper.min_model_size", &o->mapper.min_model_size,
+      "with several models, drop those with fewer images");
   add("Mapper.init_max_forward_motion", &o->mapper.init_max_forward_motion,
       "initial pair: largest forward share of the motion");
   add("Mapper.init_min_tri_angle", &o->mapper.init_min_tri_angle,

@@ -120,6 +120,22 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     scenes = MergeScenes(scenes);
     if (scenes.size() < before) RefineMergedScenes(scenes);
   }
+  // As COLMAP's mapper: with several models, those below min_model_size
+  // images (at most 80% of all) are dropped; their photos stay unregistered.
+  const size_t min_size = std::min<size_t>(
+      static_cast<size_t>(0.8 * image_names_.size()), o_.mapper.min_model_size);
+  SortBySize(&scenes);
+  int dropped = 0, images = 0;
+  while (scenes.size() > 1 && scenes.back()->NumRegImages() < min_size) {
+    ++dropped;
+    images += static_cast<int>(scenes.back()->NumRegImages());
+    scenes.pop_back();  // largest first
+  }
+  if (dropped > 0) {
+    record_({"drop " + std::to_string(dropped) + " models of fewer than " +
+                 std::to_string(min_size) + " images (Mapper.min_model_size)",
+             images, 0, 0.0, true, "their images stay unregistered"});
+  }
   return scenes;
 }
 

@@ -19,6 +19,7 @@ colmap::IncrementalMapperOptions ColmapOptions(
   colmap::IncrementalMapperOptions o;
   o.min_num_matches = m.min_num_matches;
   o.ignore_watermarks = m.ignore_watermarks;
+  o.min_model_size = m.min_model_size;
   o.mapper.init_min_num_inliers = m.init_min_num_inliers;
   o.mapper.abs_pose_min_num_inliers = m.abs_pose_min_num_inliers;
   o.mapper.init_max_forward_motion = m.init_max_forward_motion;
@@ -109,6 +110,8 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("Tmr.task_ba_global_ratio must be > 1");
   if (mapper.min_num_matches < 1)
     return fail("Mapper.min_num_matches must be >= 1");
+  if (mapper.min_model_size < 1)
+    return fail("Mapper.min_model_size must be >= 1");
   if (!(mapper.init_max_forward_motion >= 0 &&
         mapper.init_max_forward_motion <= 1))
     return fail("Mapper.init_max_forward_motion must be in [0, 1]");

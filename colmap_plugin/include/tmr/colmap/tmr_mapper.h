@@ -16,6 +16,9 @@ struct MapperPassThroughOptions {
   int min_num_matches = 15;        // --Mapper.min_num_matches
   bool ignore_watermarks = false;  // --Mapper.ignore_watermarks
   int init_min_num_inliers = 100;  // --Mapper.init_min_num_inliers
+  // With several models, smaller ones are dropped (their photos stay
+  // unregistered); at most 80% of the images, as in COLMAP.
+  int min_model_size = 10;  // --Mapper.min_model_size
   // Initial pair: at most this forward share of the motion (|t_z|), at
   // least this median triangulation angle (degrees). Photos taken walking
   // straight ahead need 1 and a few degrees.
