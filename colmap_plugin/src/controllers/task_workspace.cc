@@ -29,6 +29,10 @@ std::string TaskWorkspace::LeafModel(int k, int l) const {
       .string();
 }
 
+std::string TaskWorkspace::MergeDatabase() const {
+  return (folder_ / "merge.db").string();
+}
+
 std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
     const std::string& model, const std::string& source_database,
     const std::vector<uint32_t>& images,

@@ -28,6 +28,8 @@ class TaskWorkspace {
   const std::filesystem::path& folder() const { return folder_; }
   std::string KernelModel(int k) const;
   std::string LeafModel(int k, int l) const;
+  // A task database of all images, for the merges and the completion.
+  std::string MergeDatabase() const;
 
   // The result of the task whose model is `model`: an earlier run's when
   // resuming and its record and model are complete (`*reused` set), else

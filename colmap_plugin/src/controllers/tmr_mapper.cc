@@ -82,7 +82,7 @@ class TmrMapperRun {
       return Fail("the partition found no kernel", error);
 
     if (!RunTaskGraph(error)) return false;
-    SceneAssembler assembler(o_, cache_, (work_.folder() / "merge.db").string(),
+    SceneAssembler assembler(o_, cache_, work_.MergeDatabase(),
                              tree_.image_names, threads_,
                              [this](const TmrTaskReport& t) { Record(t); });
     const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
@@ -127,9 +127,6 @@ class TmrMapperRun {
     progress_(line.str());
   }
 
-  std::string KernelModel(int k) const { return work_.KernelModel(k); }
-  std::string LeafModel(int k, int l) const { return work_.LeafModel(k, l); }
-
   // Kernel, leaf and cluster-merge tasks as one graph: a leaf task waits
   // only for its kernel, a cluster merge only for its own leaves. Costs are
   // rough seconds per image measured on tmr_synth cities: about one per
@@ -146,9 +143,8 @@ class TmrMapperRun {
         graph.Add({"load correspondences", 1e12, {}, [&](int) {
                      cache_ = LoadTaskDatabaseCache(
                          o_.database_path, tree_.image_ids,
-                         (work_.folder() / "merge.db").string(),
-                         o_.mapper.min_num_matches, o_.mapper.ignore_watermarks,
-                         &cache_error);
+                         work_.MergeDatabase(), o_.mapper.min_num_matches,
+                         o_.mapper.ignore_watermarks, &cache_error);
                    }});
     total_weight_ = done_weight_ = 0.0;
     for (int k = 0; k < num_kernels; ++k) {
@@ -203,10 +199,10 @@ class TmrMapperRun {
     }
     std::string error;
     const auto result = work_.RunOrReuse(
-        KernelModel(k), o_.database_path, Ids(tree_, node.kernel_images),
+        work_.KernelModel(k), o_.database_path, Ids(tree_, node.kernel_images),
         [&](const std::string& db) {
           return RunReconstructionTask(TaskOptions(num_threads), db, "", pairs,
-                                       KernelModel(k));
+                                       work_.KernelModel(k));
         },
         &task.reused, &error);
     if (!result) {
@@ -266,12 +262,12 @@ class TmrMapperRun {
       images.push_back(id);
     std::string error;
     const auto result = work_.RunOrReuse(
-        LeafModel(k, l), o_.database_path, images,
+        work_.LeafModel(k, l), o_.database_path, images,
         [&](const std::string& db) {
           auto mapper = TaskOptions(num_threads);
           mapper.fix_existing_images = o_.fix_base_in_leaves;
-          return RunReconstructionTask(mapper, db, KernelModel(k), {},
-                                       LeafModel(k, l));
+          return RunReconstructionTask(mapper, db, work_.KernelModel(k), {},
+                                       work_.LeafModel(k, l));
         },
         &task.reused, &error);
     if (!result) {
@@ -302,9 +298,9 @@ class TmrMapperRun {
     }
     std::sort(leaves.begin(), leaves.end());
     std::vector<std::string> leaf_models;
-    for (const int l : leaves) leaf_models.push_back(LeafModel(k, l));
+    for (const int l : leaves) leaf_models.push_back(work_.LeafModel(k, l));
     const ClusterMerge merge = MergeLeafModels(
-        KernelModel(k), leaf_models, cache_,
+        work_.KernelModel(k), leaf_models, cache_,
         ColmapOptions(o_.mapper, num_threads), o_.refine_merged_models);
     for (const int i : merge.left_out) {
       Progress("leaf " + std::to_string(k) + "." + std::to_string(leaves[i]) +

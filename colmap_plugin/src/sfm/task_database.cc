@@ -7,7 +7,9 @@
 #include <colmap/sensor/models.h>
 #include <sqlite3.h>
 
+#include <array>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 namespace tmr {
@@ -83,75 +85,76 @@ bool WriteTaskDatabase(const std::string& source_db,
 bool CheckKeypointsAndCameras(const std::string& source_db,
                               std::string* error) {
   sqlite3* db = nullptr;
-  const auto fail = [&](const std::string& problem) {
-    *error = "database '" + source_db + "': " + problem;
-    sqlite3_close(db);
-    return false;
-  };
   if (sqlite3_open_v2(ReadOnlySqliteUri(source_db).c_str(), &db,
                       SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
                       nullptr) != SQLITE_OK) {
-    return fail("cannot open");
+    sqlite3_close(db);
+    *error = "database '" + source_db + "': cannot open";
+    return false;
   }
   sqlite3_busy_timeout(db, 10000);
-  // Each query yields the first bad row, if any: id, four numbers.
-  const auto first_bad_row = [&](const char* sql, int64_t(&row)[5],
-                                 bool* found) {
-    sqlite3_stmt* stmt = nullptr;
-    if (sqlite3_prepare_v2(db, sql, -1, &stmt, nullptr) != SQLITE_OK)
-      return false;
-    const int rc = sqlite3_step(stmt);
-    *found = rc == SQLITE_ROW;
-    for (int i = 0; *found && i < 5; ++i)
-      row[i] = sqlite3_column_int64(stmt, i);
-    sqlite3_finalize(stmt);
-    return rc == SQLITE_ROW || rc == SQLITE_DONE;
-  };
-  int64_t row[5] = {};
-  bool found = false;
-  if (!first_bad_row("SELECT image_id, rows, cols, IFNULL(length(data), 0), 0 "
-                     "FROM keypoints WHERE rows < 0 OR IFNULL(length(data), 0)"
-                     " != rows * cols * 4 OR (rows > 0 AND cols NOT IN "
-                     "(2, 4, 6)) LIMIT 1",
-                     row, &found)) {
-    return fail(std::string("cannot read keypoints: ") + sqlite3_errmsg(db));
+  // Steps through the rows of `sql` (five integers each) until `check`
+  // names a problem; returns it, or SQLite's error, or "" when all is well.
+  using Row = std::array<int64_t, 5>;
+  const auto first_problem =
+      [db](const char* sql,
+           const std::function<std::string(const Row&)>& check) {
+        sqlite3_stmt* stmt = nullptr;
+        if (sqlite3_prepare_v2(db, sql, -1, &stmt, nullptr) != SQLITE_OK)
+          return std::string("cannot read: ") + sqlite3_errmsg(db);
+        std::string problem;
+        int rc;
+        while (problem.empty() && (rc = sqlite3_step(stmt)) == SQLITE_ROW) {
+          Row row;
+          for (int i = 0; i < 5; ++i) row[i] = sqlite3_column_int64(stmt, i);
+          problem = check(row);
+        }
+        if (problem.empty() && rc != SQLITE_DONE)
+          problem = std::string("cannot read: ") + sqlite3_errmsg(db);
+        sqlite3_finalize(stmt);
+        return problem;
+      };
+  // Keypoint blobs: the query yields only the bad ones.
+  std::string problem = first_problem(
+      "SELECT image_id, rows, cols, IFNULL(length(data), 0), 0 FROM keypoints "
+      "WHERE rows < 0 OR IFNULL(length(data), 0) != rows * cols * 4 OR "
+      "(rows > 0 AND cols NOT IN (2, 4, 6)) LIMIT 1",
+      [](const Row& row) {
+        return "keypoints of image_id " + std::to_string(row[0]) +
+               ": a blob of " + std::to_string(row[3]) + " bytes for " +
+               std::to_string(row[1]) + " x " + std::to_string(row[2]) +
+               " floats (2, 4 or 6 columns)";
+      });
+  if (problem.empty()) {
+    problem = first_problem(
+        "SELECT camera_id, model, width, height, IFNULL(length(params), 0) "
+        "FROM cameras",
+        [](const Row& row) -> std::string {
+          const std::string camera = "camera_id " + std::to_string(row[0]);
+          if (row[1] < 0 || row[1] > 1000 ||
+              !colmap::ExistsCameraModelWithId(
+                  static_cast<colmap::CameraModelId>(row[1]))) {
+            return camera + " has unknown camera model " +
+                   std::to_string(row[1]);
+          }
+          if (row[2] <= 0 || row[3] <= 0) {
+            return camera + " has size " + std::to_string(row[2]) + " x " +
+                   std::to_string(row[3]);
+          }
+          const size_t n = colmap::CameraModelNumParams(
+              static_cast<colmap::CameraModelId>(row[1]));
+          if (static_cast<size_t>(row[4]) != n * sizeof(double)) {
+            return camera + " has " + std::to_string(row[4]) +
+                   " bytes of parameters, its model needs " +
+                   std::to_string(n) + " doubles";
+          }
+          return "";
+        });
   }
-  if (found) {
-    return fail("keypoints of image_id " + std::to_string(row[0]) +
-                ": a blob of " + std::to_string(row[3]) + " bytes for " +
-                std::to_string(row[1]) + " x " + std::to_string(row[2]) +
-                " floats (2, 4 or 6 columns)");
-  }
-  sqlite3_stmt* stmt = nullptr;
-  if (sqlite3_prepare_v2(db,
-                         "SELECT camera_id, model, width, height, "
-                         "IFNULL(length(params), 0) FROM cameras",
-                         -1, &stmt, nullptr) != SQLITE_OK) {
-    return fail(std::string("cannot read cameras: ") + sqlite3_errmsg(db));
-  }
-  std::string problem;
-  while (problem.empty() && sqlite3_step(stmt) == SQLITE_ROW) {
-    for (int i = 0; i < 5; ++i) row[i] = sqlite3_column_int64(stmt, i);
-    const std::string camera = "camera_id " + std::to_string(row[0]);
-    if (row[1] < 0 || row[1] > 1000 ||
-        !colmap::ExistsCameraModelWithId(
-            static_cast<colmap::CameraModelId>(row[1]))) {
-      problem = camera + " has unknown camera model " + std::to_string(row[1]);
-    } else if (row[2] <= 0 || row[3] <= 0) {
-      problem = camera + " has size " + std::to_string(row[2]) + " x " +
-                std::to_string(row[3]);
-    } else if (const size_t n = colmap::CameraModelNumParams(
-                   static_cast<colmap::CameraModelId>(row[1]));
-               static_cast<size_t>(row[4]) != n * sizeof(double)) {
-      problem = camera + " has " + std::to_string(row[4]) +
-                " bytes of parameters, its model needs " + std::to_string(n) +
-                " doubles";
-    }
-  }
-  sqlite3_finalize(stmt);
-  if (!problem.empty()) return fail(problem);
   sqlite3_close(db);
-  return true;
+  if (problem.empty()) return true;
+  *error = "database '" + source_db + "': " + problem;
+  return false;
 }
 
 std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
