@@ -201,5 +201,52 @@ TEST_F(ModelMergingTest, ASourceThatFitsOnlyAtItsAnchorImageStaysApart) {
   EXPECT_NE(bad.reason.find("other images"), std::string::npos) << bad.reason;
 }
 
+// A leaf model holds its kernel's images where the kernel model has them,
+// so it aligns on them; a leaf whose own images a mapper placed badly (here:
+// moved as a rigid group, their views of kernel points split off into
+// points of their own) must still be left out of the cluster model.
+TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
+  const std::vector<colmap::image_t> place = Images("place0/");
+  const size_t half = place.size() / 2;
+  const std::unordered_set<colmap::image_t> kernel(place.begin(),
+                                                   place.begin() + half);
+  colmap::Reconstruction bad = Keep(place);
+  const colmap::Rigid3d moved(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
+      Eigen::Vector3d(2, -1, 0.5));
+  for (const colmap::point3D_t id : bad.Point3DIds()) {
+    const colmap::Point3D point = bad.Point3D(id);
+    colmap::Track in_kernel, in_leaf;
+    for (const auto& el : point.track.Elements())
+      (kernel.count(el.image_id) ? in_kernel : in_leaf).AddElement(el);
+    bad.DeletePoint3D(id);
+    if (in_kernel.Length() >= 2) bad.AddPoint3D(point.xyz, in_kernel);
+    if (in_leaf.Length() >= 2) bad.AddPoint3D(moved * point.xyz, in_leaf);
+  }
+  for (const colmap::image_t id : place) {
+    if (!kernel.count(id))
+      bad.Image(id).CamFromWorld() =
+          bad.Image(id).CamFromWorld() * colmap::Inverse(moved);
+  }
+  const fs::path work = dir_ / "leaf_merge";
+  fs::create_directories(work / "kernel");
+  fs::create_directories(work / "bad");
+  fs::create_directories(work / "good");
+  Keep({place.begin(), place.begin() + half}).WriteBinary(work / "kernel");
+  bad.WriteBinary(work / "bad");
+  Keep(place).WriteBinary(work / "good");
+
+  const ClusterMerge merge = MergeLeafModels(
+      work / "kernel", {work / "bad", work / "good"}, *cache_,
+      colmap::IncrementalMapperOptions(), 12, /*refine=*/false);
+  EXPECT_EQ(merge.num_merged, 1);
+  ASSERT_EQ(merge.left_out.size(), 1u);
+  EXPECT_EQ(merge.left_out[0].leaf, 0);
+  EXPECT_NE(merge.left_out[0].reason.find("shared tracks reproject"),
+            std::string::npos)
+      << merge.left_out[0].reason;
+  EXPECT_EQ(merge.model->NumRegImages(), place.size());
+}
+
 }  // namespace
 }  // namespace tmr

@@ -57,6 +57,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "model growth between global BAs in tasks (COLMAP: 1.1)");
   add("Tmr.refine_merged_models", &o->refine_merged_models,
       "global bundle adjustment after merges");
+  add("Tmr.merge_refine_growth", &o->merge_refine_growth,
+      "refine a scene whenever merges grew it by this factor");
   add("Tmr.complete_models", &o->complete_models,
       "finally register images no model holds");
   add("Tmr.resume", &o->resume,

@@ -64,7 +64,11 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
                              const colmap::IncrementalMapperOptions& mapper,
-                             bool refine) {
+                             int min_shared_tracks, bool refine) {
+  // COLMAP's thresholds for its own reprojection-verified alignment
+  // (MergeReconstructions); the shared tracks are held to the same 8 px.
+  constexpr double kMaxReprojErrorPx = 8.0;
+  constexpr double kMinFitShare = 0.5;
   ClusterMerge merge;
   merge.model = std::make_shared<colmap::Reconstruction>();
   merge.model->ReadBinary(kernel_model);
@@ -74,13 +78,26 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
     colmap::Sim3d model_from_leaf;
     if (!colmap::AlignReconstructionsViaReprojections(
             leaf, *merge.model,
-            /*min_inlier_observations=*/0.3,
-            /*max_reproj_error=*/8.0, &model_from_leaf)) {
-      merge.left_out.push_back(l);
+            /*min_inlier_observations=*/0.3, kMaxReprojErrorPx,
+            &model_from_leaf)) {
+      merge.left_out.push_back(
+          {l, "fewer than 30% of the kernel images' observations reproject"});
+      continue;
+    }
+    const SharedTrackFit fit =
+        FitSharedTracks(*merge.model, leaf, *cache->CorrespondenceGraph(),
+                        model_from_leaf, kMaxReprojErrorPx);
+    const std::string fit_text = std::to_string(fit.num_fit) + " of " +
+                                 std::to_string(fit.num_shared) +
+                                 " shared tracks reproject";
+    if (fit.num_shared > min_shared_tracks &&
+        fit.num_fit < kMinFitShare * fit.num_shared) {
+      merge.left_out.push_back({l, fit_text});
       continue;
     }
     AppendReconstruction(leaf, model_from_leaf, merge.model.get());
     ++merge.num_merged;
+    merge.track_fit += (merge.track_fit.empty() ? "" : ", ") + fit_text;
   }
   if (merge.num_merged > 0) {
     merge.adjustment =
@@ -179,11 +196,17 @@ SceneAssembler::MergeScenes(
         // Pairs with no track in common are no merge candidates.
         if (a.success || a.num_shared_tracks > 0) record_(task);
         if (a.success) {
+          if (scene->NumRegImages() >=
+              o_.merge_refine_growth * refined_size_[scene.get()])
+            Refine(scene);
           joined = merged = true;
           break;
         }
       }
-      if (!joined) next.push_back(model);
+      if (!joined) {
+        refined_size_.emplace(model.get(), model->NumRegImages());
+        next.push_back(model);
+      }
     }
     clusters = std::move(next);
     SortBySize(&clusters);
@@ -256,17 +279,22 @@ void SceneAssembler::CompleteScenes(
 
 void SceneAssembler::RefineMergedScenes(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
-  const auto mapper = ColmapOptions(o_.mapper, num_threads_);
   for (const auto& scene : scenes) {
-    if (!unrefined_.count(scene.get())) continue;
-    const auto start = Clock::now();
-    const std::string adjustment =
-        RefineMergedModel(cache_, mapper, o_.refine_merged_models, scene);
-    const int images = static_cast<int>(scene->NumRegImages());
-    record_({"refine merged model", images, images, SecondsSince(start), true,
-             "tracks merged, global bundle adjustment: " + adjustment});
+    if (unrefined_.count(scene.get())) Refine(scene);
   }
-  unrefined_.clear();
+}
+
+void SceneAssembler::Refine(
+    const std::shared_ptr<colmap::Reconstruction>& scene) const {
+  const auto start = Clock::now();
+  const std::string adjustment = RefineMergedModel(
+      cache_, ColmapOptions(o_.mapper, num_threads_), o_.refine_merged_models,
+      scene);
+  const int images = static_cast<int>(scene->NumRegImages());
+  record_({"refine merged model", images, images, SecondsSince(start), true,
+           "tracks merged, global bundle adjustment: " + adjustment});
+  unrefined_.erase(scene.get());
+  refined_size_[scene.get()] = scene->NumRegImages();
 }
 
 // Images that no model holds yet get COLMAP's mapper from scratch, as

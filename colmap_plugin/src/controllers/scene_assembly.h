@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -30,22 +31,31 @@ void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models);
 // The image-cluster model of a kernel (paper Sec. 5.2): its kernel model
 // with each leaf model appended, then refined once.
 struct ClusterMerge {
+  struct LeftOut {
+    int leaf;            // index into the leaf models
+    std::string reason;  // why it was not appended
+  };
   std::shared_ptr<colmap::Reconstruction> model;
-  int num_merged = 0;         // leaf models appended
-  std::vector<int> left_out;  // indices of leaf models not aligned
-  std::string adjustment;     // summary of the refinement, if any
+  int num_merged = 0;            // leaf models appended
+  std::vector<LeftOut> left_out;  // leaf models not appended
+  std::string track_fit;  // per appended leaf: shared tracks that reproject
+  std::string adjustment;  // summary of the refinement, if any
 };
 
 // Each leaf model extends a copy of the kernel model, but the mapper
 // normalises every model after global adjustment, so a leaf model has its
 // own frame: it is aligned on the kernel images both share with COLMAP's
-// reprojection-verified alignment and appended; a leaf that does not align
-// is left out.
+// reprojection-verified alignment and appended. The alignment is then
+// checked on the leaf's own images as scene merges are
+// (FitSharedTracks): at least half of their tracks that the cluster model
+// reconstructs must reproject, since a leaf that a mapper placed badly
+// still aligns on the kernel images it holds fixed. A leaf that fails
+// either test is left out; its images go to completion.
 ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
                              const colmap::IncrementalMapperOptions& mapper,
-                             bool refine);
+                             int min_shared_tracks, bool refine);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
@@ -70,10 +80,14 @@ class SceneAssembler {
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
 
   // Each model joins the first (largest) scene it aligns with, until nothing
-  // merges; returns the scene models, largest first. Merged scenes are not
-  // refined here: with verified similarities the parts fit well enough to
-  // merge further, and one global adjustment at the end (RefineMergedScenes)
-  // costs far less than one per merge.
+  // merges; returns the scene models, largest first. A scene is refined
+  // (Refine) whenever it has grown by options.merge_refine_growth since its
+  // last global adjustment, as COLMAP's mapper refines a model grown by
+  // 10%: parts appended one after another around a city's loops drift
+  // apart, later parts then fit only in places, and one adjustment at the
+  // end starts too far off (tmr_synth city of 3,752: 51 iterations without
+  // convergence and a part 2.6 degrees off). Between those, merges add no
+  // adjustment: one per merge would cost far more.
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
 
@@ -102,8 +116,14 @@ class SceneAssembler {
   std::vector<std::string> image_names_;
   int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
+  // Re-links tracks, global adjustment and filtering (RefineMergedModel).
+  void Refine(const std::shared_ptr<colmap::Reconstruction>& scene) const;
+
   // Scenes merged or completed since their last global adjustment.
   mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
+  // Registered images of each scene at its last global adjustment.
+  mutable std::unordered_map<const colmap::Reconstruction*, size_t>
+      refined_size_;
 };
 
 }  // namespace tmr

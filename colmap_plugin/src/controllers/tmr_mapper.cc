@@ -301,16 +301,18 @@ class TmrMapperRun {
     for (const int l : leaves) leaf_models.push_back(work_.LeafModel(k, l));
     const ClusterMerge merge = MergeLeafModels(
         work_.KernelModel(k), leaf_models, cache_,
-        ColmapOptions(o_.mapper, num_threads), o_.refine_merged_models);
-    for (const int i : merge.left_out) {
+        ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
+        o_.refine_merged_models);
+    for (const auto& [i, reason] : merge.left_out) {
       Progress("leaf " + std::to_string(k) + "." + std::to_string(leaves[i]) +
-               ": cannot be aligned to its kernel, left out");
+               " left out of its cluster: " + reason);
     }
     Record({"merge cluster " + std::to_string(k),
             static_cast<int>(tree_.kernels[k].cluster_images.size()),
             static_cast<int>(merge.model->NumRegImages()), SecondsSince(start),
             true,
             std::to_string(merge.num_merged) + " leaf models" +
+                (merge.track_fit.empty() ? "" : " (" + merge.track_fit + ")") +
                 (merge.adjustment.empty() ? "" : "; " + merge.adjustment)});
     clusters_[k] = merge.model;
   }

@@ -81,7 +81,37 @@ Sim3Ransac::Report EstimateSimilarity(const std::vector<SharedTrack>& tracks,
   return estimator.Estimate(src, tgt);
 }
 
+// Whether the source point of `t`, moved into the target, reprojects onto
+// its target observation within max_px.
+bool Reprojects(const colmap::Reconstruction& target, const colmap::Sim3d& sim,
+                const SharedTrack& t, double max_px) {
+  const colmap::Image& image = target.Image(t.target_image);
+  const Eigen::Vector3d in_camera = image.CamFromWorld() * (sim * t.source_xyz);
+  if (in_camera.z() <= 0) return false;
+  const Eigen::Vector2d xy =
+      target.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized());
+  return (xy - t.target_xy).norm() <= max_px;
+}
+
 }  // namespace
+
+SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
+                               const colmap::Reconstruction& source,
+                               const colmap::CorrespondenceGraph& graph,
+                               const colmap::Sim3d& target_from_source,
+                               double max_reprojection_error_px) {
+  SharedTrackFit fit;
+  for (const colmap::image_t image_id : source.RegImageIds()) {
+    if (target.ExistsImage(image_id) && target.IsImageRegistered(image_id))
+      continue;
+    for (const SharedTrack& t : SharedTracks(target, source, graph, image_id)) {
+      ++fit.num_shared;
+      fit.num_fit += Reprojects(target, target_from_source, t,
+                                max_reprojection_error_px);
+    }
+  }
+  return fit;
+}
 
 ModelAlignment AlignModelsBySharedTracks(
     const colmap::Reconstruction& target, const colmap::Reconstruction& source,
@@ -134,21 +164,13 @@ ModelAlignment AlignModelsBySharedTracks(
   // rate under the same test rather than to a fixed one: a wrong merge
   // (repetitive structure, a false pair) fits the anchor image alone.
   const colmap::Sim3d sim = colmap::Sim3d::FromMatrix(estimate.model);
-  auto reprojects = [&](const SharedTrack& t) {
-    const colmap::Image& image = target.Image(t.target_image);
-    const Eigen::Vector3d in_camera =
-        image.CamFromWorld() * (sim * t.source_xyz);
-    if (in_camera.z() <= 0) return false;
-    const Eigen::Vector2d xy =
-        target.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized());
-    return (xy - t.target_xy).norm() <= options.max_reprojection_error_px;
-  };
+  const double max_px = options.max_reprojection_error_px;
   int anchor_fit = 0, other_fit = 0, others = 0;
-  for (const SharedTrack& t : best) anchor_fit += reprojects(t);
+  for (const SharedTrack& t : best) anchor_fit += Reprojects(target, sim, t, max_px);
   for (const SharedTrack& t : all) {
     if (t.source_image == result.anchor_image) continue;
     ++others;
-    other_fit += reprojects(t);
+    other_fit += Reprojects(target, sim, t, max_px);
   }
   const double anchor_rate = static_cast<double>(anchor_fit) / best.size();
   result.num_verified = other_fit;

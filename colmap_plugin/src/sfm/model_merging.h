@@ -58,6 +58,21 @@ ModelAlignment AlignModelsBySharedTracks(
     const colmap::CorrespondenceGraph& graph,
     const ModelAlignmentOptions& options);
 
+// How many tracks of the source images that `target` does not register are
+// reconstructed in `target` (through the correspondence graph), and how
+// many of those reproject onto their target observation within
+// max_reprojection_error_px once moved by target_from_source: the check of
+// AlignModelsBySharedTracks, for a similarity found another way.
+struct SharedTrackFit {
+  int num_shared = 0;
+  int num_fit = 0;
+};
+SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
+                               const colmap::Reconstruction& source,
+                               const colmap::CorrespondenceGraph& graph,
+                               const colmap::Sim3d& target_from_source,
+                               double max_reprojection_error_px);
+
 // Adds the registered images of `source` that `target` does not hold,
 // transformed by target_from_source, with their 3D points (observations in
 // already held images are left to RefineMergedModel to re-link).

@@ -51,8 +51,12 @@ struct TmrMapperOptions {
   // tasks can afford fewer: 1.3 cut a 78-image kernel's time by a third
   // with the same poses.
   double task_ba_global_ratio = 1.3;
-  // Global bundle adjustment after each merge.
+  // Global bundle adjustment of each merged model.
   bool refine_merged_models = true;
+  // While image-cluster models are merged into a scene, the scene is
+  // refined whenever it has grown by this factor since its last global
+  // adjustment (and once more at the end).
+  double merge_refine_growth = 1.5;
   // Finally let COLMAP's mapper continue every model with the images no
   // model holds yet.
   bool complete_models = true;
