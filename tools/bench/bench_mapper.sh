@@ -11,7 +11,8 @@
 #          places, 120 images each). Default: city1 places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
-# tmr_mapper") picks the tools and their order.
+# tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
+# tmr_mapper (e.g. "--Tmr.keep_work 1").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
@@ -89,7 +90,7 @@ for scene in "${scenes[@]}"; do
           --Mapper.num_threads "$THREADS") ;;
       tmr_mapper)
         read -r wall peak < <(timed "$out.log" "$BIN/tmr_mapper" --database_path "$dir/database.db" \
-          --output_path "$out" --Mapper.num_threads "$THREADS") ;;
+          --output_path "$out" --Mapper.num_threads "$THREADS" ${TMR_ARGS:-}) ;;
     esac
     score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
   done
