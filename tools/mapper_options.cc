@@ -68,6 +68,24 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
   AddTmrTreeOptions(desc, &o->tree);
 }
 
+namespace {
+
+// The shortest of 15 to 17 significant digits that reads back as `value`:
+// a later stage reads project.ini and must see the same options.
+std::string ShortestExact(double value) {
+  std::string text;
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << value;
+    text = out.str();
+    if (std::stod(text) == value) break;
+  }
+  return text;
+}
+
+}  // namespace
+
 std::string ProjectIni(const po::options_description& desc,
                        const po::variables_map& vm) {
   std::ostringstream ini;
@@ -81,7 +99,7 @@ std::string ProjectIni(const po::options_description& desc,
     else if (auto* i = boost::any_cast<int>(&value))
       ini << *i;
     else if (auto* d = boost::any_cast<double>(&value))
-      ini << *d;
+      ini << ShortestExact(*d);
     else if (auto* b = boost::any_cast<bool>(&value))
       ini << (*b ? 1 : 0);
     else if (auto* u = boost::any_cast<uint64_t>(&value))

@@ -22,7 +22,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # find_package_consumer builds a separate, uninstrumented project against
 # the instrumented libraries; it tests packaging, not memory.
 exclude=(-E "^find_package_consumer$")
+# The Slurm test runs the staged code that tmr_mapper_stages covers here.
 [[ "${TMR_SANITIZE_ALL:-0}" == 1 ]] ||
-  exclude=(-LE real -E "^(mapper_comparison_on_city_block|find_package_consumer)$")
+  exclude=(-LE "real|slurm" -E "^(mapper_comparison_on_city_block|find_package_consumer)$")
 echo "[asan] running ctest"
 ctest --test-dir build-asan --output-on-failure --parallel 2 "${exclude[@]}" "$@"

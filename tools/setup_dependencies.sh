@@ -25,7 +25,10 @@ PACKAGES=(
   libfreeimage-dev libmetis-dev libsqlite3-dev sqlite3
   libboost-program-options-dev libboost-filesystem-dev libboost-graph-dev
   libboost-system-dev libsuitesparse-dev libgtest-dev libgmock-dev
-  libopencv-dev nlohmann-json3-dev clang
+  libopencv-dev nlohmann-json3-dev clang python3
+  # The Slurm test starts its own single-node Slurm from these
+  # (tests/slurm/local_slurm.sh); the packages' own services stay unused.
+  slurmctld slurmd slurm-client munge iproute2 procps
 )
 
 log() { echo "[setup] $*"; }

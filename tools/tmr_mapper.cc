@@ -2,11 +2,20 @@
 // tmr_mapper --database_path DB --image_path IMAGES --output_path OUT:
 // the drop-in replacement for `colmap mapper`, reconstructing on the
 // TMR-tree. COLMAP's --Mapper.* options pass through; tmr's are --Tmr.*.
+//
+// The same run in stages, for batch schedulers (docs/distributed.md):
+//   tmr_mapper partition --database_path DB --output_path OUT [options]
+//   tmr_mapper run_task --plan OUT/plan.txt --task ID [--Mapper.num_threads N]
+//   tmr_mapper status --plan OUT/plan.txt
+//   tmr_mapper merge --plan OUT/plan.txt [--Mapper.num_threads N]
+// The later stages take the options from OUT/project.ini, which partition
+// writes with absolute paths.
 #include <boost/program_options.hpp>
 
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <set>
 
 #include "mapper_options.h"
 #include "tmr/colmap/tmr_mapper.h"
@@ -15,13 +24,48 @@
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
 
+namespace {
+
+int Error(const std::string& message, int code = 1) {
+  std::cerr << "tmr_mapper: error: " << message << "\n";
+  return code;
+}
+
+void PrintModels(const tmr::TmrMapperReport& report) {
+  std::cout << "tmr_mapper: " << report.num_images << " images, "
+            << report.model_sizes.size() << " models (registered:";
+  for (const int size : report.model_sizes) std::cout << " " << size;
+  std::cout << ") in " << std::fixed << std::setprecision(1)
+            << report.total_seconds << " s\n";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // An optional first word names the stage; none runs them all.
+  std::string stage = "run";
+  if (argc > 1 && argv[1][0] != '-') {
+    stage = argv[1];
+    argv[1] = argv[0];
+    ++argv;
+    --argc;
+  }
+  const std::set<std::string> kStages = {"run", "partition", "run_task",
+                                         "status", "merge"};
+  if (!kStages.count(stage)) {
+    return Error("unknown stage '" + stage +
+                     "' (partition, run_task, status or merge)",
+                 2);
+  }
+  const bool from_plan = stage != "run" && stage != "partition";
   tmr::TmrMapperOptions o;
   // Kernels must seed stable models: m >= 30 even in small scenes.
   o.tree.kernels.kernel_size_floor = 30;
   bool verbose = false;
+  std::string plan, task;
   po::options_description desc(
-      "tmr_mapper: COLMAP's incremental mapper on the TMR-tree");
+      "tmr_mapper [partition|run_task|status|merge]: COLMAP's incremental "
+      "mapper on the TMR-tree");
   auto add = [&desc](const char* name, auto* value, const char* help) {
     tmr::AddOption(&desc, name, value, help);
   };
@@ -31,46 +75,89 @@ int main(int argc, char** argv) {
       "image_path", po::value(&o.image_path),
       "images (optional: colours are skipped without)")(
       "output_path", po::value(&o.output_path)->required(),
-      "folder for the models 0, 1, ...");
+      "folder for the models 0, 1, ...")(
+      "plan", po::value(&plan),
+      "run_task, status, merge: OUT/plan.txt of a partition stage")(
+      "task", po::value(&task), "run_task: kernel.K or leaf.K.L");
   add("verbose", &verbose, "show COLMAP's own log");
   tmr::AddTmrMapperOptions(&desc, &o);
   po::variables_map vm;
-  if (const auto exit_code =
-          tmr::ParseCommandLine("tmr_mapper", argc, argv, desc, &vm)) {
+  // The later stages read the partition's options after the command line,
+  // whose values win (boost keeps the first value stored).
+  std::string ini;
+  for (int i = 1; from_plan && i + 1 < argc; ++i) {
+    if (std::string(argv[i]) == "--plan")
+      ini = (fs::path(argv[i + 1]).parent_path() / "project.ini").string();
+  }
+  if (from_plan && ini.empty()) return Error(stage + " needs --plan", 2);
+  if (from_plan && !fs::is_regular_file(ini)) {
+    return Error("no '" + ini + "' beside the plan (run `tmr_mapper " +
+                 "partition` first)");
+  }
+  if (const auto exit_code = tmr::ParseCommandLine(
+          "tmr_mapper", argc, argv, desc, &vm, {}, from_plan ? ini : "")) {
     return *exit_code;
   }
+  if (stage == "run_task" && task.empty())
+    return Error("run_task needs --task", 2);
   std::string error;
-  if (!o.Check(&error)) {
-    std::cerr << "tmr_mapper: error: " << error << "\n";
-    return 2;
-  }
+  if (!o.Check(&error)) return Error(error, 2);
   tmr::ConfigureColmapLogging(argv[0], verbose);
   const auto progress = tmr::TimedProgressLines();
   tmr::TmrMapperReport report;
   try {
-    // project.ini: the effective options, as COLMAP writes them.
     std::error_code ec;
     fs::create_directories(o.output_path, ec);
     if (ec) {
-      std::cerr << "tmr_mapper: error: cannot create output folder '"
-                << o.output_path << "': " << ec.message() << "\n";
-      return 1;
+      return Error("cannot create output folder '" + o.output_path +
+                   "': " + ec.message());
     }
-    tmr::WriteFileAtomically((fs::path(o.output_path) / "project.ini").string(),
-                             tmr::ProjectIni(desc, vm));
-    if (!tmr::RunTmrMapper(o, &report, &error, progress)) {
-      std::cerr << "tmr_mapper: error: " << error << "\n";
-      return 1;
+    if (stage == "run" || stage == "partition") {
+      // project.ini: the effective options, as COLMAP writes them; with
+      // absolute paths, for the stages that read it on other machines.
+      if (stage == "partition") {
+        for (const char* path : {"database_path", "output_path", "image_path"})
+          if (vm.count(path))
+            vm.at(path).value() = fs::absolute(vm[path].as<std::string>())
+                                      .lexically_normal()
+                                      .string();
+      }
+      tmr::WriteFileAtomically(
+          (fs::path(o.output_path) / "project.ini").string(),
+          tmr::ProjectIni(desc, vm));
     }
-    tmr::DrawMapperPartitionPicture(o);
+    std::vector<tmr::TmrMapperTask> tasks;
+    if (stage == "partition" || stage == "status") {
+      const bool ok = stage == "partition"
+                          ? tmr::PlanTmrMapper(o, &tasks, &error, progress)
+                          : tmr::ReadTmrMapperPlan(o, &tasks, &error);
+      if (!ok) return Error(error);
+      if (stage == "partition") tmr::DrawMapperPartitionPicture(o);
+      // One line per task: id, images, base images, state.
+      for (const tmr::TmrMapperTask& t : tasks) {
+        std::cout << t.id << " " << t.num_images << " " << t.num_base_images
+                  << " " << (t.finished ? "done" : "todo") << "\n";
+      }
+      return 0;
+    }
+    if (stage == "run_task") {
+      tmr::TmrTaskReport row;
+      if (!tmr::RunTmrMapperTask(o, task, &row, &error)) return Error(error);
+      std::cout << "tmr_mapper: " << task << ": " << row.num_registered << "/"
+                << row.num_images << " images in " << std::fixed
+                << std::setprecision(1) << row.seconds << " s"
+                << (row.reused ? " (finished earlier)" : "") << "; "
+                << row.message << "\n";
+      return 0;
+    }
+    const bool ok = stage == "merge"
+                        ? tmr::MergeTmrMapper(o, &report, &error, progress)
+                        : tmr::RunTmrMapper(o, &report, &error, progress);
+    if (!ok) return Error(error);
+    if (stage == "run") tmr::DrawMapperPartitionPicture(o);
   } catch (const std::exception& e) {
-    std::cerr << "tmr_mapper: error: " << e.what() << "\n";
-    return 1;
+    return Error(e.what());
   }
-  std::cout << "tmr_mapper: " << report.num_images << " images, "
-            << report.model_sizes.size() << " models (registered:";
-  for (const int size : report.model_sizes) std::cout << " " << size;
-  std::cout << ") in " << std::fixed << std::setprecision(1)
-            << report.total_seconds << " s\n";
+  PrintModels(report);
   return 0;
 }

@@ -14,13 +14,16 @@ namespace po = boost::program_options;
 std::optional<int> ParseCommandLine(
     const std::string& tool, int argc, char** argv,
     const po::options_description& desc, po::variables_map* vm,
-    const po::positional_options_description& positional) {
+    const po::positional_options_description& positional,
+    const std::string& config_file) {
   try {
     po::store(po::command_line_parser(argc, argv)
                   .options(desc)
                   .positional(positional)
                   .run(),
               *vm);
+    if (!config_file.empty())
+      po::store(po::parse_config_file<char>(config_file.c_str(), desc), *vm);
     if (vm->count("help")) {
       std::cout << desc << "\n";
       return 0;

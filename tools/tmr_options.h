@@ -16,12 +16,15 @@ namespace tmr {
 // go on, or its exit code: 0 after printing --help, 2 after printing one
 // "TOOL: error: ..." line for bad options.
 // `positional` names the options that plain arguments fill, in order.
+// Options the command line leaves out are then read from `config_file`
+// (name=value lines, as project.ini) if given.
 std::optional<int> ParseCommandLine(
     const std::string& tool, int argc, char** argv,
     const boost::program_options::options_description& desc,
     boost::program_options::variables_map* vm,
     const boost::program_options::positional_options_description& positional =
-        {});
+        {},
+    const std::string& config_file = "");
 
 // Registers --NAME with the current value of *value as its default.
 template <typename T>

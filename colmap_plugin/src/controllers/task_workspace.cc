@@ -20,6 +20,17 @@ bool TaskWorkspace::Open(const std::string& run_id, bool resume) {
   return WriteFileAtomically(run_id_path.string(), run_id);
 }
 
+bool TaskWorkspace::Attach(const std::string& run_id) {
+  resuming_ = ReadFileToString((folder_ / "run.id").string()) == run_id;
+  return resuming_;
+}
+
+bool TaskWorkspace::Finished(const std::string& model,
+                             ReconstructionTaskResult* result) const {
+  return LoadTaskResult(model + ".result", result) &&
+         (!result->success || fs::is_directory(model));
+}
+
 std::string TaskWorkspace::KernelModel(int k) const {
   return (folder_ / ("kernel" + std::to_string(k))).string();
 }
@@ -39,8 +50,7 @@ std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
     const std::function<ReconstructionTaskResult(const std::string&)>& run,
     bool* reused, std::string* error) const {
   ReconstructionTaskResult result;
-  *reused = resuming_ && LoadTaskResult(model + ".result", &result) &&
-            (!result.success || fs::is_directory(model));
+  *reused = resuming_ && Finished(model, &result);
   if (*reused) return result;
   const std::string db = model + ".db";
   if (!WriteTaskDatabase(source_database, images, db, error))

@@ -23,6 +23,9 @@ class TaskWorkspace {
   // `run_id` (RunFingerprint); otherwise empties the folder and records
   // `run_id`. False when the folder cannot be written.
   bool Open(const std::string& run_id, bool resume);
+  // For a stage in another process: true when the folder holds a run with
+  // `run_id`, whose finished tasks are then reused.
+  bool Attach(const std::string& run_id);
   bool resuming() const { return resuming_; }
 
   const std::filesystem::path& folder() const { return folder_; }
@@ -30,6 +33,11 @@ class TaskWorkspace {
   std::string LeafModel(int k, int l) const;
   // A task database of all images, for the merges and the completion.
   std::string MergeDatabase() const;
+
+  // Whether the task whose model is `model` has finished: its record and
+  // (when it succeeded) its model are complete; the record in `result`.
+  bool Finished(const std::string& model,
+                ReconstructionTaskResult* result) const;
 
   // The result of the task whose model is `model`: an earlier run's when
   // resuming and its record and model are complete (`*reused` set), else

@@ -11,12 +11,9 @@
 #include <thread>
 #include <unordered_set>
 
-#include "controllers/scene_assembly.h"
 #include "controllers/task_graph.h"
-#include "controllers/task_workspace.h"
 #include "controllers/tmr_mapper_support.h"
-#include "sfm/reconstruction_task.h"
-#include "sfm/task_database.h"
+#include "controllers/tmr_mapper_stages.h"
 #include "tmr/io/atomic_file.h"
 
 namespace tmr {
@@ -25,13 +22,45 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::vector<uint32_t> Ids(const TmrTree& tree,
-                          const std::vector<int>& vertices) {
-  std::vector<uint32_t> ids;
-  for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
-  return ids;
+// Checks the options and creates output_path; copies min_num_matches into
+// the match-graph options.
+bool Prepare(const TmrMapperOptions& options, TmrMapperOptions* effective,
+             std::string* error) {
+  if (!options.Check(error)) return false;
+  if (!options.image_path.empty() && !fs::is_directory(options.image_path)) {
+    *error = "image_path '" + options.image_path + "' is not a folder";
+    return false;
+  }
+  std::error_code ec;
+  fs::create_directories(options.output_path, ec);
+  if (ec) {
+    *error = "cannot create output_path '" + options.output_path +
+             "': " + ec.message();
+    return false;
+  }
+  *effective = options;
+  effective->match_graph.min_num_matches = options.mapper.min_num_matches;
+  return true;
 }
 
+int NumThreads(const TmrMapperOptions& options) {
+  return options.num_threads > 0
+             ? options.num_threads
+             : static_cast<int>(
+                   std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// report.json, and the work folder removed unless keep_work.
+void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
+            Clock::time_point start, TmrMapperReport* report) {
+  report->total_seconds = SecondsSince(start);
+  WriteFileAtomically((fs::path(o.output_path) / "report.json").string(),
+                      ReportJson(*report));
+  if (!o.keep_work) fs::remove_all(stages.work().folder());
+}
+
+// The in-process run: the stages of TmrMapperStages on one task graph,
+// with progress lines and an ETA.
 class TmrMapperRun {
  public:
   TmrMapperRun(const TmrMapperOptions& options, TmrMapperReport* report,
@@ -39,59 +68,24 @@ class TmrMapperRun {
       : o_(options),
         report_(report),
         progress_(progress),
-        work_(fs::path(o_.output_path) / ".tmr_work") {
-    threads_ = o_.num_threads > 0
-                   ? o_.num_threads
-                   : std::max(1u, std::thread::hardware_concurrency());
-  }
+        stages_(options),
+        threads_(NumThreads(options)) {}
 
   bool Run(std::string* error) {
     const auto start = Clock::now();
-    const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
-    if (graph.NumImages() == 0)
-      return Fail("the database has no images", error);
-    if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
-    if (graph.NumPairs() == 0)
-      return Fail("the database has no verified image pairs", error);
-    tree_ = BuildTmrTree(graph, o_.tree);
-    report_->num_images = graph.NumImages();
-    report_->partition_seconds = SecondsSince(start);
-    std::ostringstream json;
-    WriteTmrTreeJson(tree_, json);
-    // The kernel and leaf tasks a killed run finished are reused when the
-    // database, the partition and the options of the tasks are the same.
-    TmrTree untimed = tree_;
-    untimed.timing = {};
-    std::ostringstream partition;
-    WriteTmrTreeJson(untimed, partition);
-    if (!work_.Open(RunFingerprint(o_, partition.str()), o_.resume))
-      return Fail("cannot write in '" + work_.folder().string() + "'", error);
-    if (work_.resuming()) {
-      Progress("resuming: reusing the tasks an earlier run finished in " +
-               work_.folder().string());
-    }
-    if (!WriteFileAtomically((fs::path(o_.output_path) / "tree.json").string(),
-                             json.str())) {
-      return Fail("cannot write tree.json in '" + o_.output_path + "'", error);
-    }
-    Progress("partition: " + std::to_string(tree_.kernels.size()) +
-             " kernels, " + std::to_string(tree_.unclustered.size()) +
-             " unclustered images (" +
-             std::to_string(report_->partition_seconds) + " s)");
-    if (tree_.kernels.empty())
-      return Fail("the partition found no kernel", error);
-
+    if (!stages_.Plan(report_, [this](const std::string& l) { Progress(l); },
+                      error))
+      return false;
     if (!RunTaskGraph(error)) return false;
-    SceneAssembler assembler(o_, cache_, work_.MergeDatabase(),
-                             tree_.image_names, threads_,
-                             [this](const TmrTaskReport& t) { Record(t); });
-    const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
-        assembler.Assemble(clusters_);
-    if (!WriteModels(scenes, error)) return false;
-    report_->total_seconds = SecondsSince(start);
-    WriteFileAtomically((fs::path(o_.output_path) / "report.json").string(),
-                        ReportJson(*report_));
-    if (!o_.keep_work) fs::remove_all(work_.folder());
+    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
+    for (auto& cluster : clusters_)
+      if (cluster) clusters.push_back(std::move(cluster));
+    if (!stages_.AssembleAndWrite(
+            std::move(clusters), cache_, threads_,
+            [this](const TmrTaskReport& t) { Record(t); },
+            [this](const std::string& l) { Progress(l); }, report_, error))
+      return false;
+    Finish(o_, stages_, start, report_);
     return true;
   }
 
@@ -133,226 +127,67 @@ class TmrMapperRun {
   // image reconstructed, a leaf's fixed base a third of that, a merge a
   // tenth per image.
   bool RunTaskGraph(std::string* error) {
-    const int num_kernels = static_cast<int>(tree_.kernels.size());
-    kernel_ok_.assign(num_kernels, false);
-    base_registered_.assign(num_kernels, 0);
-    clusters_.assign(num_kernels, nullptr);
+    const TmrTree& tree = stages_.tree();
+    clusters_.assign(tree.kernels.size(), nullptr);
     TaskGraph graph;
     std::string cache_error;
-    const int cache =
-        graph.Add({"load correspondences", 1e12, {}, [&](int) {
-                     cache_ = LoadTaskDatabaseCache(
-                         o_.database_path, tree_.image_ids,
-                         work_.MergeDatabase(), o_.mapper.min_num_matches,
-                         o_.mapper.ignore_watermarks, &cache_error);
-                   }});
+    const int cache = graph.Add({"load correspondences", 1e12, {}, [&](int) {
+                                   cache_ = stages_.LoadCache(&cache_error);
+                                 }});
+    std::vector<std::vector<int>> merge_depends(tree.kernels.size(), {cache});
+    std::vector<int> kernel_node(tree.kernels.size(), -1);
     total_weight_ = done_weight_ = 0.0;
-    for (int k = 0; k < num_kernels; ++k) {
-      const TmrKernelNode& node = tree_.kernels[k];
-      const double kernel_size = node.kernel_images.size();
-      const int kernel = graph.Add(
-          {"kernel", kernel_size, {}, [this, k](int t) { RunKernel(k, t); }});
-      std::vector<int> merge_depends = {cache, kernel};
-      total_weight_ += kernel_size;
-      for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
-        const double leaf_size = node.leaf_clusters[l].size();
-        merge_depends.push_back(
-            graph.Add({"leaf",
-                       leaf_size + 0.3 * kernel_size,
-                       {kernel},
-                       [this, k, l](int t) { RunLeaf(k, l, t); }}));
-        total_weight_ += leaf_size;
-      }
-      graph.Add({"merge", 0.1 * node.cluster_images.size(), merge_depends,
-                 [this, k](int t) { MergeCluster(k, t); }});
+    std::mutex error_mutex;
+    std::string task_error;
+    for (const TmrMapperTask& task : stages_.Tasks()) {
+      const double weight = task.num_images;
+      total_weight_ += weight;
+      auto run = [this, task, weight, &error_mutex, &task_error](int threads) {
+        TmrTaskReport row;
+        std::string e;
+        if (!stages_.RunTask(task, threads, &row, &e)) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (task_error.empty()) task_error = task.id + ": " + e;
+          return;
+        }
+        Record(row, weight);
+      };
+      const bool kernel = task.leaf < 0;
+      const int id = graph.Add(
+          {kernel ? "kernel" : "leaf",
+           kernel ? weight : weight + 0.3 * task.num_base_images,
+           kernel ? std::vector<int>{} : std::vector<int>{kernel_node[task.kernel]},
+           run});
+      if (kernel) kernel_node[task.kernel] = id;
+      merge_depends[task.kernel].push_back(id);
+    }
+    for (int k = 0; k < static_cast<int>(tree.kernels.size()); ++k) {
+      graph.Add({"merge", 0.1 * tree.kernels[k].cluster_images.size(),
+                 merge_depends[k], [this, k](int threads) {
+                   if (!cache_) return;
+                   TmrTaskReport row;
+                   std::vector<std::string> notes;
+                   clusters_[k] =
+                       stages_.MergeCluster(k, cache_, threads, &row, &notes);
+                   for (const std::string& note : notes) Progress(note);
+                   if (clusters_[k]) Record(row);
+                 }});
     }
     graph_start_ = Clock::now();
     graph.Run(threads_);
     if (!cache_) return Fail(cache_error, error);
-    clusters_.erase(std::remove(clusters_.begin(), clusters_.end(), nullptr),
-                    clusters_.end());
-    clusters_.insert(clusters_.end(), part_models_.begin(), part_models_.end());
-    return true;
-  }
-
-  // COLMAP's mapper options for a kernel or leaf task.
-  colmap::IncrementalMapperOptions TaskOptions(int num_threads) const {
-    colmap::IncrementalMapperOptions options =
-        ColmapOptions(o_.mapper, num_threads);
-    options.ba_global_images_ratio = o_.task_ba_global_ratio;
-    options.ba_global_points_ratio = o_.task_ba_global_ratio;
-    return options;
-  }
-
-  void RunKernel(int k, int num_threads) {
-    const TmrKernelNode& node = tree_.kernels[k];
-    TmrTaskReport task;
-    task.name = "kernel " + std::to_string(k);
-    task.num_images = static_cast<int>(node.kernel_images.size());
-    // The exemplar first with COLMAP's choice of a second image (most
-    // matches, wide enough baseline), then with ours.
-    std::vector<std::pair<int, int>> pairs = {
-        {tree_.image_ids[node.exemplar], -1}};
-    for (const int second : node.second_images) {
-      pairs.emplace_back(tree_.image_ids[node.exemplar],
-                         tree_.image_ids[second]);
-    }
-    std::string error;
-    const auto result = work_.RunOrReuse(
-        work_.KernelModel(k), o_.database_path, Ids(tree_, node.kernel_images),
-        [&](const std::string& db) {
-          return RunReconstructionTask(TaskOptions(num_threads), db, "", pairs,
-                                       work_.KernelModel(k));
-        },
-        &task.reused, &error);
-    if (!result) {
-      task.message = error;
-    } else {
-      task.num_registered = result->num_registered;
-      task.seconds = result->seconds;
-      task.success = result->success;
-      task.message = result->message;
-      kernel_ok_[k] = result->success;
-      base_registered_[k] = result->num_registered;
-      AdoptPartModels(*result, &task);
-    }
-    Record(task, task.num_images);
-  }
-
-  // The models a task made of the images its main model left; they join
-  // the scene models by the shared-track merge rule.
-  void AdoptPartModels(const ReconstructionTaskResult& result,
-                       TmrTaskReport* task) {
-    if (result.part_models.empty()) return;
-    task->message += "; the rest in " +
-                     std::to_string(result.part_models.size()) +
-                     " more models of " +
-                     std::to_string(result.num_registered_in_parts) + " images";
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::string& path : result.part_models) {
-      auto part = std::make_shared<colmap::Reconstruction>();
-      part->ReadBinary(path);
-      for (const colmap::image_t id : part->RegImageIds())
-        part_images_.insert(id);
-      part_models_.push_back(part);
-    }
-  }
-
-  void RunLeaf(int k, int l, int num_threads) {
-    const TmrKernelNode& node = tree_.kernels[k];
-    TmrTaskReport task;
-    task.name = "leaf " + std::to_string(k) + "." + std::to_string(l);
-    task.num_images = static_cast<int>(node.leaf_clusters[l].size());
-    if (!kernel_ok_[k]) {
-      task.message = "its kernel task failed";
-      Record(task, task.num_images);
-      return;
-    }
-    // The kernel images, except those a part model of the kernel holds
-    // (no image in two models), and the leaf's: the leaf task may also
-    // register kernel images its kernel task left.
-    std::vector<uint32_t> images;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (const uint32_t id : Ids(tree_, node.kernel_images))
-        if (!part_images_.count(id)) images.push_back(id);
-    }
-    task.num_images += static_cast<int>(images.size()) - base_registered_[k];
-    for (const uint32_t id : Ids(tree_, node.leaf_clusters[l]))
-      images.push_back(id);
-    std::string error;
-    const auto result = work_.RunOrReuse(
-        work_.LeafModel(k, l), o_.database_path, images,
-        [&](const std::string& db) {
-          auto mapper = TaskOptions(num_threads);
-          mapper.fix_existing_images = o_.fix_base_in_leaves;
-          return RunReconstructionTask(mapper, db, work_.KernelModel(k), {},
-                                       work_.LeafModel(k, l));
-        },
-        &task.reused, &error);
-    if (!result) {
-      task.message = error;
-    } else {
-      task.num_registered = result->num_registered - base_registered_[k];
-      task.seconds = result->seconds;
-      task.success = result->success;
-      task.message = result->message;
-      AdoptPartModels(*result, &task);
-    }
-    if (task.success) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      finished_leaves_.emplace_back(k, l);
-    }
-    Record(task, task.num_images);
-  }
-
-  // Merges the leaf models of kernel k into its image-cluster model.
-  void MergeCluster(int k, int num_threads) {
-    if (!kernel_ok_[k] || !cache_) return;
-    const auto start = Clock::now();
-    std::vector<int> leaves;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (const auto& [kernel, l] : finished_leaves_)
-        if (kernel == k) leaves.push_back(l);
-    }
-    std::sort(leaves.begin(), leaves.end());
-    std::vector<std::string> leaf_models;
-    for (const int l : leaves) leaf_models.push_back(work_.LeafModel(k, l));
-    const ClusterMerge merge = MergeLeafModels(
-        work_.KernelModel(k), leaf_models, cache_,
-        ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
-        o_.refine_merged_models);
-    for (const auto& [i, reason] : merge.left_out) {
-      Progress("leaf " + std::to_string(k) + "." + std::to_string(leaves[i]) +
-               " left out of its cluster: " + reason);
-    }
-    Record({"merge cluster " + std::to_string(k),
-            static_cast<int>(tree_.kernels[k].cluster_images.size()),
-            static_cast<int>(merge.model->NumRegImages()), SecondsSince(start),
-            true,
-            std::to_string(merge.num_merged) + " leaf models" +
-                (merge.track_fit.empty() ? "" : " (" + merge.track_fit + ")") +
-                (merge.adjustment.empty() ? "" : "; " + merge.adjustment)});
-    clusters_[k] = merge.model;
-  }
-
-  bool WriteModels(
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
-      std::string* error) {
-    for (size_t i = 0; i < scenes.size(); ++i) {
-      if (!o_.image_path.empty())
-        scenes[i]->ExtractColorsForAllImages(o_.image_path);
-      const std::string path =
-          (fs::path(o_.output_path) / std::to_string(i)).string();
-      if (!WriteModelAtomically(*scenes[i], path)) {
-        return Fail("cannot write model '" + path + "'", error);
-      }
-      report_->model_sizes.push_back(
-          static_cast<int>(scenes[i]->NumRegImages()));
-    }
-    Progress("wrote " + std::to_string(scenes.size()) + " models to " +
-             o_.output_path);
+    if (!task_error.empty()) return Fail(task_error, error);
     return true;
   }
 
   const TmrMapperOptions& o_;
   TmrMapperReport* report_;
   std::function<void(const std::string&)> progress_;
+  TmrMapperStages stages_;
   int threads_ = 1;
-  TaskWorkspace work_;  // task databases and models, reused by a rerun
-  TmrTree tree_;
-  // Written by the tasks of the graph (each entry by one task only).
-  std::vector<char> kernel_ok_;
-  std::vector<int> base_registered_;  // images registered by each kernel task
+  // Written by the merge tasks of the graph (each entry by one task only).
   std::vector<std::shared_ptr<colmap::Reconstruction>> clusters_;
-  // Models of the images a task's main model left out; under mutex_.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> part_models_;
-  // Their images (under mutex_); a kernel's are left out of its leaf tasks.
-  std::unordered_set<uint32_t> part_images_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
-  // (kernel, leaf) of every leaf task that produced a model; under mutex_.
-  std::vector<std::pair<int, int>> finished_leaves_;
   std::mutex mutex_;
   Clock::time_point graph_start_;
   double total_weight_ = 0.0, done_weight_ = 0.0;
@@ -363,23 +198,99 @@ class TmrMapperRun {
 bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
                   std::string* error,
                   const std::function<void(const std::string&)>& progress) {
-  if (!options.Check(error)) return false;
-  if (!options.image_path.empty() && !fs::is_directory(options.image_path)) {
-    *error = "image_path '" + options.image_path + "' is not a folder";
-    return false;
-  }
-  std::error_code ec;
-  fs::create_directories(options.output_path, ec);
-  if (ec) {
-    *error = "cannot create output_path '" + options.output_path +
-             "': " + ec.message();
-    return false;
-  }
-  TmrMapperOptions effective = options;
-  effective.match_graph.min_num_matches = options.mapper.min_num_matches;
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
   *report = TmrMapperReport();
   TmrMapperRun run(effective, report, progress);
   return run.Run(error);
+}
+
+bool PlanTmrMapper(const TmrMapperOptions& options,
+                   std::vector<TmrMapperTask>* tasks, std::string* error,
+                   const std::function<void(const std::string&)>& progress) {
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
+  TmrMapperStages stages(effective);
+  TmrMapperReport report;
+  if (!stages.Plan(&report, progress, error)) return false;
+  *tasks = stages.Tasks();
+  return true;
+}
+
+bool ReadTmrMapperPlan(const TmrMapperOptions& options,
+                       std::vector<TmrMapperTask>* tasks, std::string* error) {
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
+  TmrMapperStages stages(effective);
+  if (!stages.Load(error)) return false;
+  *tasks = stages.Tasks();
+  return true;
+}
+
+bool RunTmrMapperTask(const TmrMapperOptions& options,
+                      const std::string& task_id, TmrTaskReport* report,
+                      std::string* error) {
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
+  TmrMapperStages stages(effective);
+  if (!stages.Load(error)) return false;
+  for (const TmrMapperTask& task : stages.Tasks()) {
+    if (task.id == task_id)
+      return stages.RunTask(task, NumThreads(effective), report, error);
+  }
+  *error = "the plan has no task '" + task_id + "'";
+  return false;
+}
+
+bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
+                    std::string* error,
+                    const std::function<void(const std::string&)>& progress) {
+  const auto start = Clock::now();
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
+  TmrMapperStages stages(effective);
+  if (!stages.Load(error)) return false;
+  *report = TmrMapperReport();
+  report->num_images = static_cast<int>(stages.tree().image_ids.size());
+  std::vector<std::string> unfinished;
+  for (const TmrMapperTask& task : stages.Tasks()) {
+    if (const auto row = stages.FinishedTaskRow(task)) {
+      report->tasks.push_back(*row);
+    } else {
+      unfinished.push_back(task.id);
+    }
+  }
+  if (!unfinished.empty()) {
+    *error = std::to_string(unfinished.size()) +
+             " tasks have not finished (" + unfinished.front() +
+             (unfinished.size() > 1 ? ", ..." : "") +
+             "); run them first (tmr_mapper run_task)";
+    return false;
+  }
+  const auto cache = stages.LoadCache(error);
+  if (!cache) return false;
+  auto record = [&](const TmrTaskReport& row) {
+    report->tasks.push_back(row);
+    if (progress) progress(row.name + ": " + row.message);
+  };
+  // Cluster merges one after another, each with every thread.
+  const int threads = NumThreads(effective);
+  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
+  for (int k = 0; k < static_cast<int>(stages.tree().kernels.size()); ++k) {
+    TmrTaskReport row;
+    std::vector<std::string> notes;
+    auto cluster = stages.MergeCluster(k, cache, threads, &row, &notes);
+    for (const std::string& note : notes)
+      if (progress) progress(note);
+    if (!cluster) continue;
+    record(row);
+    clusters.push_back(std::move(cluster));
+  }
+  if (!stages.AssembleAndWrite(std::move(clusters), cache, threads, record,
+                               progress, report, error))
+    return false;
+  Finish(effective, stages, start, report);
+  return true;
 }
 
 }  // namespace tmr

@@ -55,6 +55,12 @@ std::vector<MatchGraphImage> ReadImages(const ReadOnlySqlite& db) {
             [](const MatchGraphImage& a, const MatchGraphImage& b) {
               return a.image_id < b.image_id;
             });
+  for (size_t i = 1; i < images.size(); ++i) {
+    if (images[i].image_id == images[i - 1].image_id) {
+      db.Fail("image_id " + std::to_string(images[i].image_id) +
+              " appears twice");
+    }
+  }
   return images;
 }
 
@@ -171,6 +177,13 @@ bool MatchGraphOptions::Check(std::string* error) const {
   return true;
 }
 
+std::vector<MatchGraphImage> ReadDatabaseImages(
+    const std::string& database_path) {
+  ReadOnlySqlite db(database_path);
+  RequireSchema(db);
+  return ReadImages(db);
+}
+
 MatchGraph ReadMatchGraph(const std::string& database_path,
                           const MatchGraphOptions& options) {
   std::string error;
@@ -181,12 +194,6 @@ MatchGraph ReadMatchGraph(const std::string& database_path,
   RequireSchema(db);
   MatchGraph graph;
   graph.images = ReadImages(db);
-  for (size_t i = 1; i < graph.images.size(); ++i) {
-    if (graph.images[i].image_id == graph.images[i - 1].image_id) {
-      db.Fail("image_id " + std::to_string(graph.images[i].image_id) +
-              " appears twice");
-    }
-  }
   ReadKeypointCounts(db, &graph);
   ReadVerifiedPairs(db, options, &graph);
   return graph;

@@ -58,4 +58,10 @@ std::string ReadOnlySqliteUri(const std::string& path,
 MatchGraph ReadMatchGraph(const std::string& database_path,
                           const MatchGraphOptions& options = {});
 
+// The images of a COLMAP database (id, name, camera; keypoint counts left
+// 0), sorted by id, as ReadMatchGraph reads them; for a stage that needs
+// the names and ids but not the matches. Throws DatabaseError.
+std::vector<MatchGraphImage> ReadDatabaseImages(
+    const std::string& database_path);
+
 }  // namespace tmr

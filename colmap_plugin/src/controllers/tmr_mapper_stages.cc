@@ -1,0 +1,343 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/tmr_mapper_stages.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "controllers/scene_assembly.h"
+#include "controllers/tmr_mapper_support.h"
+#include "sfm/reconstruction_task.h"
+#include "sfm/task_database.h"
+#include "tmr/io/atomic_file.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::vector<uint32_t> Ids(const TmrTree& tree,
+                          const std::vector<int>& vertices) {
+  std::vector<uint32_t> ids;
+  for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
+  return ids;
+}
+
+std::string TreeJson(const TmrTree& tree) {
+  std::ostringstream json;
+  WriteTmrTreeJson(tree, json);
+  return json.str();
+}
+
+bool Fail(const std::string& message, std::string* error) {
+  *error = message;
+  return false;
+}
+
+}  // namespace
+
+TmrMapperStages::TmrMapperStages(const TmrMapperOptions& options)
+    : o_(options), work_(fs::path(options.output_path) / ".tmr_work") {}
+
+bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
+                           std::string* error) {
+  const auto start = Clock::now();
+  const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
+  if (graph.NumImages() == 0)
+    return Fail("the database has no images", error);
+  if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
+  if (graph.NumPairs() == 0)
+    return Fail("the database has no verified image pairs", error);
+  tree_ = BuildTmrTree(graph, o_.tree);
+  report->num_images = graph.NumImages();
+  report->partition_seconds = SecondsSince(start);
+  // The kernel and leaf tasks a killed run finished are reused when the
+  // database, the partition and the options of the tasks are the same.
+  TmrTree untimed = tree_;
+  untimed.timing = {};
+  if (!work_.Open(RunFingerprint(o_, TreeJson(untimed)), o_.resume))
+    return Fail("cannot write in '" + work_.folder().string() + "'", error);
+  if (work_.resuming() && progress) {
+    progress("resuming: reusing the tasks an earlier run finished in " +
+             work_.folder().string());
+  }
+  std::ostringstream plan;
+  for (const TmrMapperTask& task : Tasks()) {
+    plan << task.id << " " << task.num_images << " " << task.num_base_images
+         << "\n";
+  }
+  const fs::path out(o_.output_path);
+  if (!WriteFileAtomically((out / "tree.json").string(), TreeJson(tree_)) ||
+      !WriteFileAtomically((out / "plan.txt").string(), plan.str())) {
+    return Fail("cannot write tree.json and plan.txt in '" + o_.output_path +
+                    "'",
+                error);
+  }
+  if (progress) {
+    progress("partition: " + std::to_string(tree_.kernels.size()) +
+             " kernels, " + std::to_string(tree_.unclustered.size()) +
+             " unclustered images (" +
+             std::to_string(report->partition_seconds) + " s)");
+  }
+  if (tree_.kernels.empty()) return Fail("the partition found no kernel", error);
+  return true;
+}
+
+bool TmrMapperStages::Load(std::string* error) {
+  const fs::path out(o_.output_path);
+  std::ifstream in(out / "tree.json");
+  if (!in || !fs::exists(out / "plan.txt")) {
+    return Fail("no plan in '" + o_.output_path +
+                    "' (run `tmr_mapper partition` first)",
+                error);
+  }
+  std::vector<std::string> names;
+  const std::vector<MatchGraphImage> images =
+      ReadDatabaseImages(o_.database_path);
+  for (const MatchGraphImage& image : images) names.push_back(image.name);
+  try {
+    tree_ = ReadTmrTreeJson(in, names);
+  } catch (const std::exception& e) {
+    return Fail("cannot read '" + (out / "tree.json").string() +
+                    "': " + e.what(),
+                error);
+  }
+  for (const MatchGraphImage& image : images)
+    tree_.image_ids.push_back(image.image_id);
+  TmrTree untimed = tree_;
+  untimed.timing = {};
+  if (!work_.Attach(RunFingerprint(o_, TreeJson(untimed)))) {
+    return Fail("the plan in '" + o_.output_path +
+                    "' was made from another database or with other "
+                    "options; make it again (tmr_mapper partition)",
+                error);
+  }
+  return true;
+}
+
+std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
+  std::vector<TmrMapperTask> tasks;
+  for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    tasks.push_back({"kernel." + std::to_string(k), k, -1,
+                     static_cast<int>(node.kernel_images.size()), 0, false});
+  }
+  for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
+      tasks.push_back({"leaf." + std::to_string(k) + "." + std::to_string(l),
+                       k, l, static_cast<int>(node.leaf_clusters[l].size()),
+                       static_cast<int>(node.kernel_images.size()), false});
+    }
+  }
+  for (TmrMapperTask& task : tasks) {
+    ReconstructionTaskResult result;
+    task.finished = work_.Finished(Model(task), &result);
+  }
+  return tasks;
+}
+
+std::string TmrMapperStages::Model(const TmrMapperTask& task) const {
+  return task.leaf < 0 ? work_.KernelModel(task.kernel)
+                       : work_.LeafModel(task.kernel, task.leaf);
+}
+
+TmrMapperStages::KernelState TmrMapperStages::ReadKernelState(int k) const {
+  KernelState state;
+  ReconstructionTaskResult result;
+  state.finished = work_.Finished(work_.KernelModel(k), &result);
+  state.success = state.finished && result.success;
+  state.num_registered = result.num_registered;
+  for (const std::string& path : result.part_models) {
+    colmap::Reconstruction part;
+    part.ReadBinary(path);
+    for (const colmap::image_t id : part.RegImageIds())
+      state.part_images.push_back(id);
+  }
+  return state;
+}
+
+TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
+                                   const ReconstructionTaskResult& result,
+                                   bool reused) const {
+  TmrTaskReport row;
+  row.name = task.leaf < 0 ? "kernel " + std::to_string(task.kernel)
+                           : "leaf " + std::to_string(task.kernel) + "." +
+                                 std::to_string(task.leaf);
+  row.num_images = task.num_images;
+  row.num_registered = result.num_registered;
+  if (task.leaf >= 0) {
+    // A leaf task registers the kernel images its kernel task left too;
+    // its own count is what it adds to the kernel's model.
+    const KernelState kernel = ReadKernelState(task.kernel);
+    const int base = task.num_base_images -
+                     static_cast<int>(kernel.part_images.size());
+    row.num_images += base - kernel.num_registered;
+    row.num_registered -= kernel.num_registered;
+  }
+  row.seconds = result.seconds;
+  row.success = result.success;
+  row.message = result.message;
+  row.reused = reused;
+  if (!result.part_models.empty()) {
+    row.message += "; the rest in " +
+                   std::to_string(result.part_models.size()) +
+                   " more models of " +
+                   std::to_string(result.num_registered_in_parts) + " images";
+  }
+  return row;
+}
+
+bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
+                              TmrTaskReport* row, std::string* error) const {
+  colmap::IncrementalMapperOptions mapper =
+      ColmapOptions(o_.mapper, num_threads);
+  mapper.ba_global_images_ratio = o_.task_ba_global_ratio;
+  mapper.ba_global_points_ratio = o_.task_ba_global_ratio;
+  const TmrKernelNode& node = tree_.kernels.at(task.kernel);
+  const std::string model = Model(task);
+  std::vector<uint32_t> images;
+  std::vector<std::pair<int, int>> pairs;
+  std::string base_model;
+  if (task.leaf < 0) {
+    // The exemplar first with COLMAP's choice of a second image (most
+    // matches, wide enough baseline), then with ours.
+    images = Ids(tree_, node.kernel_images);
+    pairs.emplace_back(tree_.image_ids[node.exemplar], -1);
+    for (const int second : node.second_images) {
+      pairs.emplace_back(tree_.image_ids[node.exemplar],
+                         tree_.image_ids[second]);
+    }
+  } else {
+    const KernelState kernel = ReadKernelState(task.kernel);
+    if (!kernel.finished) {
+      return Fail("task " + task.id + " needs kernel." +
+                      std::to_string(task.kernel) + " finished first",
+                  error);
+    }
+    if (!kernel.success) {
+      ReconstructionTaskResult failed;
+      failed.message = "its kernel task failed";
+      SaveTaskResult(failed, model + ".result");
+      *row = Row(task, failed, false);
+      return true;
+    }
+    // The kernel images, except those a part model of the kernel holds
+    // (no image in two models), and the leaf's: the leaf task may also
+    // register kernel images its kernel task left.
+    const std::unordered_set<uint32_t> parts(kernel.part_images.begin(),
+                                             kernel.part_images.end());
+    for (const uint32_t id : Ids(tree_, node.kernel_images))
+      if (!parts.count(id)) images.push_back(id);
+    for (const uint32_t id : Ids(tree_, node.leaf_clusters.at(task.leaf)))
+      images.push_back(id);
+    base_model = work_.KernelModel(task.kernel);
+    mapper.fix_existing_images = o_.fix_base_in_leaves;
+  }
+  bool reused = false;
+  const auto result = work_.RunOrReuse(
+      model, o_.database_path, images,
+      [&](const std::string& db) {
+        return RunReconstructionTask(mapper, db, base_model, pairs, model);
+      },
+      &reused, error);
+  if (!result) return false;
+  *row = Row(task, *result, reused);
+  return true;
+}
+
+std::optional<TmrTaskReport> TmrMapperStages::FinishedTaskRow(
+    const TmrMapperTask& task) const {
+  ReconstructionTaskResult result;
+  if (!work_.Finished(Model(task), &result)) return std::nullopt;
+  return Row(task, result, /*reused=*/false);
+}
+
+std::shared_ptr<const colmap::DatabaseCache> TmrMapperStages::LoadCache(
+    std::string* error) const {
+  return LoadTaskDatabaseCache(o_.database_path, tree_.image_ids,
+                               work_.MergeDatabase(), o_.mapper.min_num_matches,
+                               o_.mapper.ignore_watermarks, error);
+}
+
+std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
+    int k, std::shared_ptr<const colmap::DatabaseCache> cache, int num_threads,
+    TmrTaskReport* row, std::vector<std::string>* notes) const {
+  const auto start = Clock::now();
+  if (!ReadKernelState(k).success) return nullptr;
+  const TmrKernelNode& node = tree_.kernels[k];
+  std::vector<int> leaves;
+  std::vector<std::string> leaf_models;
+  for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
+    ReconstructionTaskResult result;
+    if (work_.Finished(work_.LeafModel(k, l), &result) && result.success) {
+      leaves.push_back(l);
+      leaf_models.push_back(work_.LeafModel(k, l));
+    }
+  }
+  const ClusterMerge merge = MergeLeafModels(
+      work_.KernelModel(k), leaf_models, std::move(cache),
+      ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
+      o_.refine_merged_models);
+  for (const auto& [i, reason] : merge.left_out) {
+    notes->push_back("leaf " + std::to_string(k) + "." +
+                     std::to_string(leaves[i]) +
+                     " left out of its cluster: " + reason);
+  }
+  *row = {"merge cluster " + std::to_string(k),
+          static_cast<int>(node.cluster_images.size()),
+          static_cast<int>(merge.model->NumRegImages()),
+          SecondsSince(start),
+          true,
+          std::to_string(merge.num_merged) + " leaf models" +
+              (merge.track_fit.empty() ? "" : " (" + merge.track_fit + ")") +
+              (merge.adjustment.empty() ? "" : "; " + merge.adjustment)};
+  return merge.model;
+}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>>
+TmrMapperStages::PartModels() const {
+  std::vector<std::shared_ptr<colmap::Reconstruction>> parts;
+  for (const TmrMapperTask& task : Tasks()) {
+    ReconstructionTaskResult result;
+    if (!work_.Finished(Model(task), &result)) continue;
+    for (const std::string& path : result.part_models) {
+      parts.push_back(std::make_shared<colmap::Reconstruction>());
+      parts.back()->ReadBinary(path);
+    }
+  }
+  return parts;
+}
+
+bool TmrMapperStages::AssembleAndWrite(
+    std::vector<std::shared_ptr<colmap::Reconstruction>> models,
+    std::shared_ptr<const colmap::DatabaseCache> cache, int num_threads,
+    const std::function<void(const TmrTaskReport&)>& record,
+    const Progress& progress, TmrMapperReport* report,
+    std::string* error) const {
+  for (auto& part : PartModels()) models.push_back(std::move(part));
+  const SceneAssembler assembler(o_, std::move(cache), work_.MergeDatabase(),
+                                 tree_.image_names, num_threads, record);
+  const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
+      assembler.Assemble(models);
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    if (!o_.image_path.empty())
+      scenes[i]->ExtractColorsForAllImages(o_.image_path);
+    const std::string path =
+        (fs::path(o_.output_path) / std::to_string(i)).string();
+    if (!WriteModelAtomically(*scenes[i], path))
+      return Fail("cannot write model '" + path + "'", error);
+    report->model_sizes.push_back(static_cast<int>(scenes[i]->NumRegImages()));
+  }
+  if (progress) {
+    progress("wrote " + std::to_string(scenes.size()) + " models to " +
+             o_.output_path);
+  }
+  return true;
+}
+
+}  // namespace tmr

@@ -1,0 +1,100 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <colmap/scene/database_cache.h>
+#include <colmap/scene/reconstruction.h>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "controllers/task_workspace.h"
+#include "tmr/colmap/tmr_mapper.h"
+
+namespace tmr {
+
+// The steps of tmr_mapper (paper Sec. 5) on its work folder
+// (output_path/.tmr_work), each with its inputs and outputs on disk: the
+// partition, one kernel or leaf task, a kernel's cluster merge, the scene
+// assembly. RunTmrMapper runs them in one process on its task graph; the
+// staged entry points (PlanTmrMapper, RunTmrMapperTask, MergeTmrMapper) run
+// them in separate processes, possibly on other machines sharing
+// output_path. What one task needs of another (a leaf task of its kernel's
+// result) it reads from disk in both cases, so both give the same models.
+class TmrMapperStages {
+ public:
+  using Progress = std::function<void(const std::string&)>;
+
+  explicit TmrMapperStages(const TmrMapperOptions& options);
+
+  // Builds the TMR-tree, writes tree.json and plan.txt (one line per task:
+  // id, images, base images) and opens the work folder, resuming an
+  // earlier run's tasks when the database, partition and task options are
+  // the same (options.resume). Fills report->num_images and
+  // partition_seconds.
+  bool Plan(TmrMapperReport* report, const Progress& progress,
+            std::string* error);
+  // The tree and work folder of an earlier Plan with the same options.
+  bool Load(std::string* error);
+
+  const TmrTree& tree() const { return tree_; }
+  bool resuming() const { return work_.resuming(); }
+  const TaskWorkspace& work() const { return work_; }
+
+  // Every kernel task, then every leaf task, with its state on disk.
+  std::vector<TmrMapperTask> Tasks() const;
+
+  // Runs a kernel or leaf task, or reuses its finished result
+  // (row.reused). A leaf task whose kernel task failed records a failed
+  // result at once. False with `error` when the task cannot run: its task
+  // database cannot be written, or its kernel task has not finished.
+  bool RunTask(const TmrMapperTask& task, int num_threads, TmrTaskReport* row,
+               std::string* error) const;
+  // The report row of a finished task; nothing when it has not finished.
+  std::optional<TmrTaskReport> FinishedTaskRow(const TmrMapperTask& task) const;
+
+  // COLMAP's correspondences of all images, from a task database of all
+  // images in the work folder.
+  std::shared_ptr<const colmap::DatabaseCache> LoadCache(
+      std::string* error) const;
+
+  // The image-cluster model of kernel k from its finished kernel and leaf
+  // tasks (MergeLeafModels); null when the kernel task failed. `row`
+  // describes the merge, `notes` the leaf models left out.
+  std::shared_ptr<colmap::Reconstruction> MergeCluster(
+      int k, std::shared_ptr<const colmap::DatabaseCache> cache,
+      int num_threads, TmrTaskReport* row,
+      std::vector<std::string>* notes) const;
+
+  // The models the finished tasks made of the images their main model left.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> PartModels() const;
+
+  // The last stage: scene models from the cluster and part models
+  // (SceneAssembler), written to output_path/0, 1, ..., largest first.
+  bool AssembleAndWrite(
+      std::vector<std::shared_ptr<colmap::Reconstruction>> models,
+      std::shared_ptr<const colmap::DatabaseCache> cache, int num_threads,
+      const std::function<void(const TmrTaskReport&)>& record,
+      const Progress& progress, TmrMapperReport* report,
+      std::string* error) const;
+
+ private:
+  struct KernelState {
+    bool finished = false;
+    bool success = false;
+    int num_registered = 0;
+    std::vector<uint32_t> part_images;  // in the kernel's part models
+  };
+  KernelState ReadKernelState(int k) const;
+  std::string Model(const TmrMapperTask& task) const;
+  TmrTaskReport Row(const TmrMapperTask& task,
+                    const ReconstructionTaskResult& result, bool reused) const;
+
+  const TmrMapperOptions& o_;
+  TaskWorkspace work_;
+  TmrTree tree_;
+};
+
+}  // namespace tmr
