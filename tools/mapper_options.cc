@@ -109,14 +109,18 @@ std::string ProjectIni(const po::options_description& desc,
   return ini.str();
 }
 
-void DrawMapperPartitionPicture(const TmrMapperOptions& o) {
+bool DrawMapperPartitionPicture(const TmrMapperOptions& o) {
+  // The force-directed layout takes minutes beyond this size.
+  constexpr int kMaxPictureImages = 20000;
   const MatchGraph graph = ReadMatchGraph(o.database_path, o.match_graph);
+  if (graph.NumImages() > kMaxPictureImages) return false;
   std::vector<std::string> names;
   for (const auto& image : graph.images) names.push_back(image.name);
   std::ifstream tree_file(fs::path(o.output_path) / "tree.json");
   const TmrTree tree = ReadTmrTreeJson(tree_file, names);
   DrawPartitionPicture(BuildSimilarityGraph(graph), tree,
                        (fs::path(o.output_path) / "partition.png").string());
+  return true;
 }
 
 std::function<void(const std::string&)> TimedProgressLines() {

@@ -21,8 +21,9 @@ std::string ProjectIni(const boost::program_options::options_description& desc,
                        const boost::program_options::variables_map& vm);
 
 // Draws output_path/partition.png from output_path/tree.json and the
-// database's similarity graph. Throws on unreadable input.
-void DrawMapperPartitionPicture(const TmrMapperOptions& options);
+// database's similarity graph; false (nothing drawn) above 20,000 images,
+// where the layout would take minutes. Throws on unreadable input.
+bool DrawMapperPartitionPicture(const TmrMapperOptions& options);
 
 // Prints each progress line to stdout as "[tmr    12.3 s] line", timed
 // from the call.

@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
                           ? tmr::PlanTmrMapper(o, &tasks, &error, progress)
                           : tmr::ReadTmrMapperPlan(o, &tasks, &error);
       if (!ok) return Error(error);
-      if (stage == "partition") tmr::DrawMapperPartitionPicture(o);
+      if (stage == "partition" && !tmr::DrawMapperPartitionPicture(o))
+        progress("partition.png skipped: too many images to draw");
       // One line per task: id, images, base images, state.
       for (const tmr::TmrMapperTask& t : tasks) {
         std::cout << t.id << " " << t.num_images << " " << t.num_base_images
@@ -154,7 +155,8 @@ int main(int argc, char** argv) {
                         ? tmr::MergeTmrMapper(o, &report, &error, progress)
                         : tmr::RunTmrMapper(o, &report, &error, progress);
     if (!ok) return Error(error);
-    if (stage == "run") tmr::DrawMapperPartitionPicture(o);
+    if (stage == "run" && !tmr::DrawMapperPartitionPicture(o))
+      progress("partition.png skipped: too many images to draw");
   } catch (const std::exception& e) {
     return Error(e.what());
   }
