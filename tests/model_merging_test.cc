@@ -236,9 +236,9 @@ TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
   bad.WriteBinary(work / "bad");
   Keep(place).WriteBinary(work / "good");
 
-  const ClusterMerge merge = MergeLeafModels(
-      work / "kernel", {work / "bad", work / "good"}, *cache_,
-      colmap::IncrementalMapperOptions(), 12, /*refine=*/false);
+  const ClusterMerge merge =
+      MergeLeafModels(work / "kernel", {work / "bad", work / "good"}, *cache_,
+                      colmap::IncrementalMapperOptions(), 12, /*refine=*/false);
   EXPECT_EQ(merge.num_merged, 1);
   ASSERT_EQ(merge.left_out.size(), 1u);
   EXPECT_EQ(merge.left_out[0].leaf, 0);

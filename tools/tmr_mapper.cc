@@ -53,9 +53,9 @@ int main(int argc, char** argv) {
   const std::set<std::string> kStages = {"run", "partition", "run_task",
                                          "status", "merge"};
   if (!kStages.count(stage)) {
-    return Error("unknown stage '" + stage +
-                     "' (partition, run_task, status or merge)",
-                 2);
+    return Error(
+        "unknown stage '" + stage + "' (partition, run_task, status or merge)",
+        2);
   }
   const bool from_plan = stage != "run" && stage != "partition";
   tmr::TmrMapperOptions o;

@@ -287,9 +287,9 @@ void SceneAssembler::RefineMergedScenes(
 void SceneAssembler::Refine(
     const std::shared_ptr<colmap::Reconstruction>& scene) const {
   const auto start = Clock::now();
-  const std::string adjustment = RefineMergedModel(
-      cache_, ColmapOptions(o_.mapper, num_threads_), o_.refine_merged_models,
-      scene);
+  const std::string adjustment =
+      RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads_),
+                        o_.refine_merged_models, scene);
   const int images = static_cast<int>(scene->NumRegImages());
   record_({"refine merged model", images, images, SecondsSince(start), true,
            "tracks merged, global bundle adjustment: " + adjustment});

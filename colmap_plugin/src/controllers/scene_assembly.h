@@ -36,9 +36,9 @@ struct ClusterMerge {
     std::string reason;  // why it was not appended
   };
   std::shared_ptr<colmap::Reconstruction> model;
-  int num_merged = 0;            // leaf models appended
+  int num_merged = 0;             // leaf models appended
   std::vector<LeftOut> left_out;  // leaf models not appended
-  std::string track_fit;  // per appended leaf: shared tracks that reproject
+  std::string track_fit;   // per appended leaf: shared tracks that reproject
   std::string adjustment;  // summary of the refinement, if any
 };
 

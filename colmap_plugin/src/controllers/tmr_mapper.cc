@@ -12,8 +12,8 @@
 #include <unordered_set>
 
 #include "controllers/task_graph.h"
-#include "controllers/tmr_mapper_support.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "controllers/tmr_mapper_support.h"
 #include "tmr/io/atomic_file.h"
 
 namespace tmr {
@@ -73,8 +73,8 @@ class TmrMapperRun {
 
   bool Run(std::string* error) {
     const auto start = Clock::now();
-    if (!stages_.Plan(report_, [this](const std::string& l) { Progress(l); },
-                      error))
+    if (!stages_.Plan(
+            report_, [this](const std::string& l) { Progress(l); }, error))
       return false;
     if (!RunTaskGraph(error)) return false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
@@ -153,11 +153,12 @@ class TmrMapperRun {
         Record(row, weight);
       };
       const bool kernel = task.leaf < 0;
-      const int id = graph.Add(
-          {kernel ? "kernel" : "leaf",
-           kernel ? weight : weight + 0.3 * task.num_base_images,
-           kernel ? std::vector<int>{} : std::vector<int>{kernel_node[task.kernel]},
-           run});
+      const int id =
+          graph.Add({kernel ? "kernel" : "leaf",
+                     kernel ? weight : weight + 0.3 * task.num_base_images,
+                     kernel ? std::vector<int>{}
+                            : std::vector<int>{kernel_node[task.kernel]},
+                     run});
       if (kernel) kernel_node[task.kernel] = id;
       merge_depends[task.kernel].push_back(id);
     }
@@ -261,9 +262,8 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
     }
   }
   if (!unfinished.empty()) {
-    *error = std::to_string(unfinished.size()) +
-             " tasks have not finished (" + unfinished.front() +
-             (unfinished.size() > 1 ? ", ..." : "") +
+    *error = std::to_string(unfinished.size()) + " tasks have not finished (" +
+             unfinished.front() + (unfinished.size() > 1 ? ", ..." : "") +
              "); run them first (tmr_mapper run_task)";
     return false;
   }

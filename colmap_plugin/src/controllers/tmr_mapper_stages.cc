@@ -47,8 +47,7 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
                            std::string* error) {
   const auto start = Clock::now();
   const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
-  if (graph.NumImages() == 0)
-    return Fail("the database has no images", error);
+  if (graph.NumImages() == 0) return Fail("the database has no images", error);
   if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
   if (graph.NumPairs() == 0)
     return Fail("the database has no verified image pairs", error);
@@ -73,9 +72,9 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
   const fs::path out(o_.output_path);
   if (!WriteFileAtomically((out / "tree.json").string(), TreeJson(tree_)) ||
       !WriteFileAtomically((out / "plan.txt").string(), plan.str())) {
-    return Fail("cannot write tree.json and plan.txt in '" + o_.output_path +
-                    "'",
-                error);
+    return Fail(
+        "cannot write tree.json and plan.txt in '" + o_.output_path + "'",
+        error);
   }
   if (progress) {
     progress("partition: " + std::to_string(tree_.kernels.size()) +
@@ -83,7 +82,8 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
              " unclustered images (" +
              std::to_string(report->partition_seconds) + " s)");
   }
-  if (tree_.kernels.empty()) return Fail("the partition found no kernel", error);
+  if (tree_.kernels.empty())
+    return Fail("the partition found no kernel", error);
   return true;
 }
 
@@ -102,9 +102,9 @@ bool TmrMapperStages::Load(std::string* error) {
   try {
     tree_ = ReadTmrTreeJson(in, names);
   } catch (const std::exception& e) {
-    return Fail("cannot read '" + (out / "tree.json").string() +
-                    "': " + e.what(),
-                error);
+    return Fail(
+        "cannot read '" + (out / "tree.json").string() + "': " + e.what(),
+        error);
   }
   for (const MatchGraphImage& image : images)
     tree_.image_ids.push_back(image.image_id);
@@ -129,8 +129,8 @@ std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
   for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
     const TmrKernelNode& node = tree_.kernels[k];
     for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
-      tasks.push_back({"leaf." + std::to_string(k) + "." + std::to_string(l),
-                       k, l, static_cast<int>(node.leaf_clusters[l].size()),
+      tasks.push_back({"leaf." + std::to_string(k) + "." + std::to_string(l), k,
+                       l, static_cast<int>(node.leaf_clusters[l].size()),
                        static_cast<int>(node.kernel_images.size()), false});
     }
   }
@@ -174,8 +174,8 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
     // A leaf task registers the kernel images its kernel task left too;
     // its own count is what it adds to the kernel's model.
     const KernelState kernel = ReadKernelState(task.kernel);
-    const int base = task.num_base_images -
-                     static_cast<int>(kernel.part_images.size());
+    const int base =
+        task.num_base_images - static_cast<int>(kernel.part_images.size());
     row.num_images += base - kernel.num_registered;
     row.num_registered -= kernel.num_registered;
   }
@@ -279,10 +279,10 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
       leaf_models.push_back(work_.LeafModel(k, l));
     }
   }
-  const ClusterMerge merge = MergeLeafModels(
-      work_.KernelModel(k), leaf_models, std::move(cache),
-      ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
-      o_.refine_merged_models);
+  const ClusterMerge merge =
+      MergeLeafModels(work_.KernelModel(k), leaf_models, std::move(cache),
+                      ColmapOptions(o_.mapper, num_threads),
+                      o_.merge_min_shared_tracks, o_.refine_merged_models);
   for (const auto& [i, reason] : merge.left_out) {
     notes->push_back("leaf " + std::to_string(k) + "." +
                      std::to_string(leaves[i]) +

@@ -106,8 +106,8 @@ SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
       continue;
     for (const SharedTrack& t : SharedTracks(target, source, graph, image_id)) {
       ++fit.num_shared;
-      fit.num_fit += Reprojects(target, target_from_source, t,
-                                max_reprojection_error_px);
+      fit.num_fit +=
+          Reprojects(target, target_from_source, t, max_reprojection_error_px);
     }
   }
   return fit;
@@ -166,7 +166,8 @@ ModelAlignment AlignModelsBySharedTracks(
   const colmap::Sim3d sim = colmap::Sim3d::FromMatrix(estimate.model);
   const double max_px = options.max_reprojection_error_px;
   int anchor_fit = 0, other_fit = 0, others = 0;
-  for (const SharedTrack& t : best) anchor_fit += Reprojects(target, sim, t, max_px);
+  for (const SharedTrack& t : best)
+    anchor_fit += Reprojects(target, sim, t, max_px);
   for (const SharedTrack& t : all) {
     if (t.source_image == result.anchor_image) continue;
     ++others;

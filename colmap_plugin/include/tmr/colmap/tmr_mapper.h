@@ -116,22 +116,22 @@ bool RunTmrMapper(
 
 // A kernel or leaf-cluster task of the plan.
 struct TmrMapperTask {
-  std::string id;            // "kernel.K" or "leaf.K.L"
-  int kernel = 0;            // K
-  int leaf = -1;             // L; -1 for the kernel task
-  int num_images = 0;        // the kernel's or leaf cluster's images
-  int num_base_images = 0;   // a leaf task also carries its kernel's
-  bool finished = false;     // a complete result is on disk
+  std::string id;           // "kernel.K" or "leaf.K.L"
+  int kernel = 0;           // K
+  int leaf = -1;            // L; -1 for the kernel task
+  int num_images = 0;       // the kernel's or leaf cluster's images
+  int num_base_images = 0;  // a leaf task also carries its kernel's
+  bool finished = false;    // a complete result is on disk
 };
 
 // Stage 1: the TMR-tree (tree.json), the task plan (plan.txt: id, images,
 // base images per line) and the work folder (output_path/.tmr_work); a
 // plan made again with the same database and options keeps the finished
 // tasks. `tasks` receives the plan.
-bool PlanTmrMapper(const TmrMapperOptions& options,
-                   std::vector<TmrMapperTask>* tasks, std::string* error,
-                   const std::function<void(const std::string&)>& progress =
-                       nullptr);
+bool PlanTmrMapper(
+    const TmrMapperOptions& options, std::vector<TmrMapperTask>* tasks,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress = nullptr);
 
 // The plan in output_path with the state of each task. False when there is
 // none, or when it was made from another database or with other options.
@@ -146,10 +146,10 @@ bool RunTmrMapperTask(const TmrMapperOptions& options,
 
 // Stage 3: cluster merges, scene models and output as RunTmrMapper writes
 // them; every task must have finished.
-bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
-                    std::string* error,
-                    const std::function<void(const std::string&)>& progress =
-                        nullptr);
+bool MergeTmrMapper(
+    const TmrMapperOptions& options, TmrMapperReport* report,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress = nullptr);
 
 }  // namespace tmr
 
