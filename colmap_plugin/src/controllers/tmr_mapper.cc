@@ -273,19 +273,31 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
     report->tasks.push_back(row);
     if (progress) progress(row.name + ": " + row.message);
   };
-  // Cluster merges one after another, each with every thread.
+  // Cluster merges on the task graph, as in the one-command run.
   const int threads = NumThreads(effective);
-  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
-  for (int k = 0; k < static_cast<int>(stages.tree().kernels.size()); ++k) {
-    TmrTaskReport row;
-    std::vector<std::string> notes;
-    auto cluster = stages.MergeCluster(k, cache, threads, &row, &notes);
-    for (const std::string& note : notes)
-      if (progress) progress(note);
-    if (!cluster) continue;
-    record(row);
-    clusters.push_back(std::move(cluster));
+  const int num_kernels = static_cast<int>(stages.tree().kernels.size());
+  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters(num_kernels);
+  std::mutex mutex;
+  TaskGraph graph;
+  for (int k = 0; k < num_kernels; ++k) {
+    graph.Add({"merge",
+               0.1 * stages.tree().kernels[k].cluster_images.size(),
+               {},
+               [&, k](int num_threads) {
+                 TmrTaskReport row;
+                 std::vector<std::string> notes;
+                 auto cluster =
+                     stages.MergeCluster(k, cache, num_threads, &row, &notes);
+                 std::lock_guard<std::mutex> lock(mutex);
+                 for (const std::string& note : notes)
+                   if (progress) progress(note);
+                 if (cluster) record(row);
+                 clusters[k] = std::move(cluster);
+               }});
   }
+  graph.Run(threads);
+  clusters.erase(std::remove(clusters.begin(), clusters.end(), nullptr),
+                 clusters.end());
   if (!stages.AssembleAndWrite(std::move(clusters), cache, threads, record,
                                progress, report, error))
     return false;
