@@ -85,9 +85,13 @@ int main(int argc, char** argv) {
   // The later stages read the partition's options after the command line,
   // whose values win (boost keeps the first value stored).
   std::string ini;
-  for (int i = 1; from_plan && i + 1 < argc; ++i) {
-    if (std::string(argv[i]) == "--plan")
-      ini = (fs::path(argv[i + 1]).parent_path() / "project.ini").string();
+  for (int i = 1; from_plan && i < argc; ++i) {
+    const std::string arg = argv[i];
+    std::string path;
+    if (arg == "--plan" && i + 1 < argc) path = argv[i + 1];
+    if (arg.rfind("--plan=", 0) == 0) path = arg.substr(7);
+    if (!path.empty())
+      ini = (fs::path(path).parent_path() / "project.ini").string();
   }
   if (from_plan && ini.empty()) return Error(stage + " needs --plan", 2);
   if (from_plan && !fs::is_regular_file(ini)) {
