@@ -196,6 +196,10 @@ SceneAssembler::MergeScenes(
         // Pairs with no track in common are no merge candidates.
         if (a.success || a.num_shared_tracks > 0) record_(task);
         if (a.success) {
+          // The model is part of the scene now and may be freed: no record
+          // of it may outlive it (the sets are keyed by address).
+          unrefined_.erase(model.get());
+          refined_size_.erase(model.get());
           if (scene->NumRegImages() >=
               o_.merge_refine_growth * refined_size_[scene.get()])
             Refine(scene);

@@ -163,7 +163,8 @@ TmrMapperStages::KernelState TmrMapperStages::ReadKernelState(int k) const {
 
 TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
                                    const ReconstructionTaskResult& result,
-                                   bool reused) const {
+                                   bool reused,
+                                   const KernelState& kernel) const {
   TmrTaskReport row;
   row.name = task.leaf < 0 ? "kernel " + std::to_string(task.kernel)
                            : "leaf " + std::to_string(task.kernel) + "." +
@@ -173,7 +174,6 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
   if (task.leaf >= 0) {
     // A leaf task registers the kernel images its kernel task left too;
     // its own count is what it adds to the kernel's model.
-    const KernelState kernel = ReadKernelState(task.kernel);
     const int base =
         task.num_base_images - static_cast<int>(kernel.part_images.size());
     row.num_images += base - kernel.num_registered;
@@ -203,6 +203,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
   std::vector<uint32_t> images;
   std::vector<std::pair<int, int>> pairs;
   std::string base_model;
+  KernelState kernel;  // a leaf task's kernel
   if (task.leaf < 0) {
     // The exemplar first with COLMAP's choice of a second image (most
     // matches, wide enough baseline), then with ours.
@@ -213,7 +214,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
                          tree_.image_ids[second]);
     }
   } else {
-    const KernelState kernel = ReadKernelState(task.kernel);
+    kernel = ReadKernelState(task.kernel);
     if (!kernel.finished) {
       return Fail("task " + task.id + " needs kernel." +
                       std::to_string(task.kernel) + " finished first",
@@ -223,7 +224,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
       ReconstructionTaskResult failed;
       failed.message = "its kernel task failed";
       SaveTaskResult(failed, model + ".result");
-      *row = Row(task, failed, false);
+      *row = Row(task, failed, false, kernel);
       return true;
     }
     // The kernel images, except those a part model of the kernel holds
@@ -246,7 +247,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
       },
       &reused, error);
   if (!result) return false;
-  *row = Row(task, *result, reused);
+  *row = Row(task, *result, reused, kernel);
   return true;
 }
 
@@ -254,7 +255,8 @@ std::optional<TmrTaskReport> TmrMapperStages::FinishedTaskRow(
     const TmrMapperTask& task) const {
   ReconstructionTaskResult result;
   if (!work_.Finished(Model(task), &result)) return std::nullopt;
-  return Row(task, result, /*reused=*/false);
+  return Row(task, result, /*reused=*/false,
+             task.leaf < 0 ? KernelState() : ReadKernelState(task.kernel));
 }
 
 std::shared_ptr<const colmap::DatabaseCache> TmrMapperStages::LoadCache(

@@ -89,8 +89,11 @@ class TmrMapperStages {
   };
   KernelState ReadKernelState(int k) const;
   std::string Model(const TmrMapperTask& task) const;
+  // A task's report row; a leaf's counts are relative to `kernel`, its
+  // kernel's state (unused for a kernel task).
   TmrTaskReport Row(const TmrMapperTask& task,
-                    const ReconstructionTaskResult& result, bool reused) const;
+                    const ReconstructionTaskResult& result, bool reused,
+                    const KernelState& kernel) const;
 
   const TmrMapperOptions& o_;
   TaskWorkspace work_;
