@@ -55,6 +55,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "tau of the merge rule");
   add("Tmr.task_ba_global_ratio", &o->task_ba_global_ratio,
       "model growth between global BAs in tasks (COLMAP: 1.1)");
+  add("Tmr.check_kernels", &o->check_kernels,
+      "redo a kernel its verified matches contradict, intrinsics held");
   add("Tmr.refine_merged_models", &o->refine_merged_models,
       "global bundle adjustment after merges");
   add("Tmr.merge_refine_growth", &o->merge_refine_growth,

@@ -1,8 +1,11 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// tmr_eval --gt GT_MODEL --model DIR [DIR ...] [--output_json FILE]
+// tmr_eval [--gt GT_MODEL] [--database_path DB] --model DIR [DIR ...]
+//          [--output_json FILE]
 // Scores COLMAP models against ground truth (or against another model given
 // as --gt): registered images, points, reprojection error, and after a robust
-// sim3 alignment rotation and position errors plus a wrong-merge flag.
+// sim3 alignment rotation and position errors plus a wrong-merge flag. With
+// --database_path, also without ground truth: the verified matches of the
+// database that the model's poses contradict.
 // A DIR without a model but with numbered sub-folders (mapper output) stands
 // for all of them.
 #include <boost/program_options.hpp>
@@ -59,8 +62,11 @@ int main(int argc, char** argv) {
   po::options_description desc(
       "tmr_eval: score COLMAP models against ground truth or another model");
   desc.add_options()("help,h", "print this help")(
-      "gt", po::value(&reference)->required(),
+      "gt", po::value(&reference),
       "reference model: ground truth, or another reconstruction")(
+      "database_path", po::value(&options.database_path),
+      "check the models against the verified matches of this database "
+      "(read-only)")(
       "model", po::value(&model_args)->multitoken()->required(),
       "models to score (a folder of numbered models counts as all of them)")(
       "output_json", po::value(&json_path), "also write the scores as JSON")(

@@ -239,11 +239,14 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     base_model = work_.KernelModel(task.kernel);
     mapper.fix_existing_images = o_.fix_base_in_leaves;
   }
+  const MatchConsistencyOptions kernel_check;
   bool reused = false;
   const auto result = work_.RunOrReuse(
       model, o_.database_path, images,
       [&](const std::string& db) {
-        return RunReconstructionTask(mapper, db, base_model, pairs, model);
+        return RunReconstructionTask(mapper, db, base_model, pairs,
+                                     o_.check_kernels ? &kernel_check : nullptr,
+                                     model);
       },
       &reused, error);
   if (!result) return false;

@@ -53,7 +53,7 @@ std::string RunFingerprint(const TmrMapperOptions& o,
      << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations << " "
      << m.init_max_forward_motion << " " << m.init_min_tri_angle << " "
      << m.filter_min_tri_angle << "\ntasks " << o.fix_base_in_leaves << " "
-     << o.task_ba_global_ratio << "\n"
+     << o.task_ba_global_ratio << " " << o.check_kernels << "\n"
      << tree_json;
   return id.str();
 }

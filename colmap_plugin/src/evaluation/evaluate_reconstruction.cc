@@ -10,7 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <stdexcept>
+
+#include "sfm/match_consistency.h"
+#include "sfm/task_database.h"
 
 namespace tmr {
 namespace {
@@ -200,6 +204,42 @@ std::vector<std::array<double, 3>> ReadCameraCentres(
   return centres;
 }
 
+namespace {
+
+MatchConsistencyReport ReportMatchConsistency(
+    const colmap::Reconstruction& model, const std::string& database_path) {
+  namespace fs = std::filesystem;
+  // COLMAP's Database class writes to what it opens: the model's images
+  // are copied into a temporary database first (the input stays read-only).
+  std::vector<uint32_t> image_ids;
+  for (const colmap::image_t id : model.RegImageIds()) image_ids.push_back(id);
+  const fs::path scratch =
+      fs::temp_directory_path() /
+      ("tmr_eval_" + std::to_string(std::random_device()()) + ".db");
+  std::string error;
+  if (!WriteTaskDatabase(database_path, image_ids, scratch.string(), &error))
+    throw std::runtime_error(error);
+  const MatchConsistencyOptions options;
+  MatchConsistency c;
+  {
+    const colmap::Database database(scratch.string());
+    c = CheckMatchConsistency(model, database, options);
+  }
+  std::error_code ec;
+  fs::remove(scratch, ec);
+  MatchConsistencyReport report;
+  report.checked = true;
+  report.num_matches = c.num_matches;
+  report.num_tested = c.num_tested;
+  report.num_inconsistent = c.num_inconsistent;
+  report.num_pairs = c.num_pairs;
+  report.num_inconsistent_pairs = c.num_inconsistent_pairs;
+  report.consistent = c.IsConsistent(options);
+  return report;
+}
+
+}  // namespace
+
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options) {
@@ -209,6 +249,9 @@ ModelEvaluation EvaluateModel(const std::string& reference_path,
   const colmap::Reconstruction model = ReadModel(model_path);
   ModelEvaluation eval = EvaluateReconstruction(reference, model, options);
   eval.model_path = model_path;
+  if (!options.database_path.empty())
+    eval.match_consistency =
+        ReportMatchConsistency(model, options.database_path);
   return eval;
 }
 

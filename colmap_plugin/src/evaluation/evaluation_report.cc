@@ -69,6 +69,17 @@ void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
     }
     out << "\n";
   }
+  for (const ModelEvaluation& e : evaluations) {
+    const MatchConsistencyReport& c = e.match_consistency;
+    if (!c.checked) continue;
+    out << "match consistency of " << e.model_path << ": "
+        << c.num_inconsistent << " of " << c.num_matches
+        << " verified matches (" << std::setprecision(2)
+        << 100.0 * c.num_inconsistent / std::max<int64_t>(1, c.num_matches)
+        << "%) and " << c.num_inconsistent_pairs << " of " << c.num_pairs
+        << " pairs inconsistent: "
+        << (c.consistent ? "consistent" : "INCONSISTENT") << "\n";
+  }
   out << std::defaultfloat
       << "(rotation in degrees; position as a share of the scene scale: the "
          "RMS distance of\n"
@@ -107,7 +118,17 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
     for (size_t k = 0; k < e.track_length_histogram.size(); ++k) {
       out << (k ? ", " : "") << e.track_length_histogram[k];
     }
-    out << "]}";
+    out << "]";
+    const MatchConsistencyReport& c = e.match_consistency;
+    if (c.checked) {
+      out << ", \"match_consistency\": {\"matches\": " << c.num_matches
+          << ", \"tested\": " << c.num_tested
+          << ", \"inconsistent\": " << c.num_inconsistent
+          << ", \"pairs\": " << c.num_pairs
+          << ", \"inconsistent_pairs\": " << c.num_inconsistent_pairs
+          << ", \"consistent\": " << (c.consistent ? "true" : "false") << "}";
+    }
+    out << "}";
   }
   std::unordered_map<std::string, int> models_of;
   for (const ModelEvaluation& e : evaluations)

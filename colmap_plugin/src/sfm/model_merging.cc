@@ -264,7 +264,9 @@ std::string AdjustMergedBundle(
   solver.function_tolerance = 1e-6;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  return summary.BriefReport();
+  return std::string(ceres::LinearSolverTypeToString(
+             solver.linear_solver_type)) +
+         ": " + summary.BriefReport();
 }
 
 std::string RefineMergedModel(

@@ -87,8 +87,9 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // 1,000 images and runs its global adjustments to the iteration limit
 // (function tolerance 0); on a merged 1,087-image city that took 648 s and
 // left a median rotation error of 0.039 deg against the stock mapper's
-// 0.017. Returns Ceres' one-line report, empty when there was nothing to
-// adjust.
+// 0.017. Memory is the problem's, not the solver's: on a 3,749-image model
+// both solvers held 9.7 GB. Returns the solver's name and Ceres' one-line
+// report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
     const colmap::IncrementalMapperOptions& mapper_options,
     colmap::IncrementalMapper* mapper);

@@ -132,12 +132,97 @@ void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
   }
 }
 
+// One run of COLMAP's mapper controller on the task database from an
+// initial pair (-1: COLMAP's choice), continuing `base_model` if given; the
+// largest model, or null.
+std::shared_ptr<colmap::Reconstruction> MapFromInitialPair(
+    const colmap::IncrementalMapperOptions& mapper_options,
+    const std::string& task_database, const std::string& base_model,
+    const std::pair<int, int>& initial_pair) {
+  auto options =
+      std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
+  options->multiple_models = false;
+  options->extract_colors = false;
+  options->image_names.clear();
+  options->init_image_id1 = initial_pair.first;
+  options->init_image_id2 = initial_pair.second;
+  auto manager = std::make_shared<colmap::ReconstructionManager>();
+  if (!base_model.empty()) {
+    const size_t index = manager->Add();
+    manager->Get(index)->ReadBinary(base_model);
+  }
+  colmap::IncrementalMapperController controller(options, "", task_database,
+                                                 manager);
+  controller.Run();
+  std::shared_ptr<colmap::Reconstruction> largest;
+  for (size_t i = 0; i < manager->Size(); ++i) {
+    if (!largest || manager->Get(i)->NumRegImages() > largest->NumRegImages())
+      largest = manager->Get(i);
+  }
+  return largest;
+}
+
+std::string DescribePair(const std::pair<int, int>& pair) {
+  return pair.first < 0    ? "automatic initial pair"
+         : pair.second < 0 ? "initial image " + std::to_string(pair.first)
+                           : "initial pair " + std::to_string(pair.first) +
+                                 "+" + std::to_string(pair.second);
+}
+
+std::string DescribeConsistency(const MatchConsistency& c) {
+  std::ostringstream out;
+  out.precision(2);
+  out << std::fixed << 100.0 * c.InconsistentShare()
+      << "% of verified matches and " << c.num_inconsistent_pairs
+      << " pairs inconsistent";
+  return out.str();
+}
+
+// A kernel model that its own verified matches contradict
+// (CheckMatchConsistency) is mapped once more from the same initial pair
+// with the intrinsics held at their priors: where COLMAP's mapper went
+// wrong on a 3,752-image city, it had traded focal length against depth
+// from the initial pair on (focal lengths at 0.55x their priors). The redo
+// replaces the model when it contradicts fewer matches and registers at
+// least 90% as many images. Appends what happened to `how`.
+void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
+                        const std::string& task_database,
+                        const std::pair<int, int>& initial_pair,
+                        const MatchConsistencyOptions& check,
+                        std::shared_ptr<colmap::Reconstruction>* model,
+                        std::string* how) {
+  const auto consistency = [&](const colmap::Reconstruction& m) {
+    const colmap::Database database(task_database);  // the task's own
+    return CheckMatchConsistency(m, database, check);
+  };
+  const MatchConsistency first = consistency(**model);
+  if (first.IsConsistent(check)) return;
+  *how += "; " + DescribeConsistency(first);
+  colmap::IncrementalMapperOptions held = mapper_options;
+  held.ba_refine_focal_length = false;
+  held.ba_refine_principal_point = false;
+  held.ba_refine_extra_params = false;
+  const auto redo = MapFromInitialPair(held, task_database, "", initial_pair);
+  if (!redo || redo->NumRegImages() < 2) {
+    *how += "; the redo with intrinsics at their priors failed";
+    return;
+  }
+  const MatchConsistency second = consistency(*redo);
+  const bool better = second.InconsistentShare() < first.InconsistentShare() &&
+                      10 * redo->NumRegImages() >= 9 * (*model)->NumRegImages();
+  *how += std::string("; redone with intrinsics at their priors (") +
+          std::to_string(redo->NumRegImages()) + " images, " +
+          DescribeConsistency(second) + "): " + (better ? "taken" : "not taken");
+  if (better) *model = redo;
+}
+
 }  // namespace
 
 ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalMapperOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
+    const MatchConsistencyOptions* kernel_check,
     const std::string& output_model) {
   const auto start = std::chrono::steady_clock::now();
   ReconstructionTaskResult result;
@@ -159,34 +244,20 @@ ReconstructionTaskResult RunReconstructionTask(
   // Keep the best model over the attempts; stop at one that registers
   // half of the task's images.
   std::shared_ptr<colmap::Reconstruction> best;
-  std::string how;
-  for (const auto& [image1, image2] : attempts) {
-    auto options =
-        std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
-    options->multiple_models = false;
-    options->extract_colors = false;
-    options->image_names.clear();
-    options->init_image_id1 = image1;
-    options->init_image_id2 = image2;
-    auto manager = std::make_shared<colmap::ReconstructionManager>();
-    if (!base_model.empty()) {
-      const size_t index = manager->Add();
-      manager->Get(index)->ReadBinary(base_model);
-    }
-    colmap::IncrementalMapperController controller(options, "", task_database,
-                                                   manager);
-    controller.Run();
-    for (size_t i = 0; i < manager->Size(); ++i) {
-      if (!best || manager->Get(i)->NumRegImages() > best->NumRegImages()) {
-        best = manager->Get(i);
-        how = image1 < 0   ? "automatic initial pair"
-              : image2 < 0 ? "initial image " + std::to_string(image1)
-                           : "initial pair " + std::to_string(image1) + "+" +
-                                 std::to_string(image2);
-      }
+  std::pair<int, int> best_pair;
+  for (const auto& pair : attempts) {
+    const auto model =
+        MapFromInitialPair(mapper_options, task_database, base_model, pair);
+    if (model && (!best || model->NumRegImages() > best->NumRegImages())) {
+      best = model;
+      best_pair = pair;
     }
     if (best && best->NumRegImages() >= kEnoughShare * result.num_images) break;
   }
+  std::string how = DescribePair(best_pair);
+  if (best && best->NumRegImages() >= 2 && base_model.empty() && kernel_check)
+    RedoIfInconsistent(mapper_options, task_database, best_pair, *kernel_check,
+                       &best, &how);
   if (best && best->NumRegImages() >= 2) {
     result.num_registered = static_cast<int>(best->NumRegImages());
     result.success = WriteModelAtomically(*best, output_model);

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "sfm/match_consistency.h"
+
 namespace tmr {
 
 struct ReconstructionTaskResult {
@@ -41,7 +43,10 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // model wins, and a model with half of the images ends the search. When the
 // winner leaves images out, COLMAP's mapper then reconstructs those on their
 // own (several models if need be): a kernel can hold two dense groups that
-// only its full scene links, and their models may still merge later.
+// only its full scene links, and their models may still merge later. With
+// `kernel_check`, a kernel model that contradicts its verified matches is
+// mapped once more with the intrinsics held at their priors
+// (CheckMatchConsistency; the result's message says what happened).
 // Leaf task: `base_model` is the kernel's model; the mapper extends a copy
 // of it with the task's other images, keeping the base poses fixed when
 // mapper_options.fix_existing_images is set. Leaf images linked to the
@@ -54,6 +59,7 @@ ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalMapperOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
+    const MatchConsistencyOptions* kernel_check,
     const std::string& output_model);
 
 // A finished task's result on disk (a small text file, written atomically

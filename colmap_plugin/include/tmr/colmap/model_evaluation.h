@@ -22,8 +22,28 @@ struct ModelEvaluationOptions {
   int min_wrong_merge_images = 5;
   // Seed of the RANSAC sampling.
   unsigned seed = 0;
+  // When set: the COLMAP database the model was reconstructed from (opened
+  // read-only); its verified matches between registered images are checked
+  // against the model's poses, which needs no ground truth (see
+  // MatchConsistencyReport).
+  std::string database_path;
 
   bool Check(std::string* error = nullptr) const;
+};
+
+// Verified matches of the model's registered image pairs that no common
+// track holds, triangulated with the model's poses: inconsistent when they
+// reproject farther than 4 px (COLMAP's verification threshold). A correct
+// model has (almost) none; a group of photos placed wrongly has many.
+struct MatchConsistencyReport {
+  bool checked = false;
+  int64_t num_matches = 0;       // verified inlier matches, registered pairs
+  int64_t num_tested = 0;        // not in a common track, triangulated
+  int64_t num_inconsistent = 0;  // of those, reprojecting too far
+  int num_pairs = 0;
+  int num_inconsistent_pairs = 0;  // more than half of >= 15 tested
+  bool consistent = true;  // <= 0.5% of the matches and <= 5 pairs
+
 };
 
 struct ErrorStatistics {
@@ -64,12 +84,13 @@ struct ModelEvaluation {
   std::vector<std::array<double, 3>> aligned_centres;
   // Names of the model's registered images.
   std::vector<std::string> image_names;
+  MatchConsistencyReport match_consistency;  // with options.database_path
 };
 
 // Reads the reference and the model (COLMAP models, binary or text) and
 // scores the model; with an empty reference_path only the model's own
 // statistics (images, points, reprojection error, tracks). Throws
-// std::runtime_error for unreadable models.
+// std::runtime_error for unreadable models or databases.
 ModelEvaluation EvaluateModel(const std::string& reference_path,
                               const std::string& model_path,
                               const ModelEvaluationOptions& options);

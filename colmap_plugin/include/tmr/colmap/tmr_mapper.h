@@ -51,6 +51,11 @@ struct TmrMapperOptions {
   // tasks can afford fewer: 1.3 cut a 78-image kernel's time by a third
   // with the same poses.
   double task_ba_global_ratio = 1.3;
+  // Check every kernel model against its verified matches (triangulated
+  // with the model's poses, those no common track holds must reproject
+  // within 4 px) and map a kernel that fails once more with its intrinsics
+  // held at their priors.
+  bool check_kernels = true;
   // Global bundle adjustment of each merged model.
   bool refine_merged_models = true;
   // While image-cluster models are merged into a scene, the scene is

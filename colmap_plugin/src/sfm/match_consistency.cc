@@ -1,0 +1,89 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "sfm/match_consistency.h"
+
+#include <colmap/geometry/triangulation.h>
+#include <colmap/scene/projection.h>
+#include <stdexcept>
+
+#include <cmath>
+#include <vector>
+
+namespace tmr {
+
+bool MatchConsistencyOptions::Check(std::string* error) const {
+  const auto fail = [error](const char* message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!(max_reprojection_error > 0.0 && std::isfinite(max_reprojection_error)))
+    return fail("max_reprojection_error must be > 0");
+  if (!(max_inconsistent_share >= 0.0 && max_inconsistent_share <= 1.0))
+    return fail("max_inconsistent_share must be in [0, 1]");
+  if (max_inconsistent_pairs < 0 || min_pair_matches < 1)
+    return fail("max_inconsistent_pairs must be >= 0, min_pair_matches >= 1");
+  return true;
+}
+
+MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
+                                       const colmap::Database& database,
+                                       const MatchConsistencyOptions& options) {
+  if (std::string error; !options.Check(&error))
+    throw std::invalid_argument("CheckMatchConsistency: " + error);
+  std::vector<colmap::image_pair_t> pair_ids;
+  std::vector<colmap::TwoViewGeometry> geometries;
+  database.ReadTwoViewGeometries(&pair_ids, &geometries);
+  const double max_squared_error =
+      options.max_reprojection_error * options.max_reprojection_error;
+  MatchConsistency result;
+  for (size_t i = 0; i < pair_ids.size(); ++i) {
+    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_ids[i]);
+    const auto& matches = geometries[i].inlier_matches;
+    if (matches.empty() || !model.ExistsImage(id1) ||
+        !model.ExistsImage(id2) || !model.IsImageRegistered(id1) ||
+        !model.IsImageRegistered(id2))
+      continue;
+    const colmap::Image& image1 = model.Image(id1);
+    const colmap::Image& image2 = model.Image(id2);
+    const colmap::Camera& camera1 = model.Camera(image1.CameraId());
+    const colmap::Camera& camera2 = model.Camera(image2.CameraId());
+    const Eigen::Matrix3x4d pose1 = image1.CamFromWorld().ToMatrix();
+    const Eigen::Matrix3x4d pose2 = image2.CamFromWorld().ToMatrix();
+    ++result.num_pairs;
+    int tested = 0, inconsistent = 0;
+    for (const colmap::FeatureMatch& match : matches) {
+      if (match.point2D_idx1 >= image1.NumPoints2D() ||
+          match.point2D_idx2 >= image2.NumPoints2D())
+        continue;  // keypoints of another database
+      ++result.num_matches;
+      const colmap::Point2D& p1 = image1.Point2D(match.point2D_idx1);
+      const colmap::Point2D& p2 = image2.Point2D(match.point2D_idx2);
+      if (p1.HasPoint3D() && p1.point3D_id == p2.point3D_id) {
+        ++result.num_in_common_track;
+        continue;
+      }
+      const Eigen::Vector3d xyz =
+          colmap::TriangulatePoint(pose1, pose2, camera1.CamFromImg(p1.xy),
+                                   camera2.CamFromImg(p2.xy));
+      // A match behind a camera cannot be placed at all: a wrong match
+      // consistent with the epipolar geometry, not evidence against poses.
+      if (!xyz.allFinite() || !colmap::HasPointPositiveDepth(pose1, xyz) ||
+          !colmap::HasPointPositiveDepth(pose2, xyz))
+        continue;
+      ++tested;
+      if (colmap::CalculateSquaredReprojectionError(p1.xy, xyz, pose1,
+                                                    camera1) >
+              max_squared_error ||
+          colmap::CalculateSquaredReprojectionError(p2.xy, xyz, pose2,
+                                                    camera2) >
+              max_squared_error)
+        ++inconsistent;
+    }
+    result.num_tested += tested;
+    result.num_inconsistent += inconsistent;
+    if (tested >= options.min_pair_matches && 2 * inconsistent > tested)
+      ++result.num_inconsistent_pairs;
+  }
+  return result;
+}
+
+}  // namespace tmr

@@ -1,0 +1,133 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// CheckMatchConsistency on a tmr_synth place: its ground truth agrees with
+// the verified matches of its database; the same model with a group of
+// photos moved as a rigid block (their tracks split off from the others')
+// contradicts them. And the kernel redo of RunReconstructionTask on real
+// COLMAP mapper runs.
+#include <colmap/scene/database.h>
+#include <colmap/scene/reconstruction.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <unordered_set>
+
+#include "evaluation/evaluate_reconstruction.h"
+#include "sfm/match_consistency.h"
+#include "sfm/reconstruction_task.h"
+#include "test_scene.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MatchConsistencyTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    SyntheticSceneOptions options;
+    options.num_places = 1;
+    options.num_unlinked_places = 0;
+    options.cameras_per_place = 30;
+    std::string error;
+    dir_ = WriteTestScene("match_consistency_test", options, &error);
+    ASSERT_FALSE(dir_.empty()) << error;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  static std::string Database() { return (dir_ / "database.db").string(); }
+
+  // The ground truth with its second half of photos moved by `moved` as a
+  // rigid block, their tracks split from the first half's.
+  static colmap::Reconstruction MoveHalf(const colmap::Rigid3d& moved) {
+    colmap::Reconstruction model = ReadModel((dir_ / "gt").string());
+    std::vector<colmap::image_t> ids = model.RegImageIds();
+    std::sort(ids.begin(), ids.end());
+    const std::unordered_set<colmap::image_t> kept(
+        ids.begin(), ids.begin() + ids.size() / 2);
+    for (const colmap::point3D_t id : model.Point3DIds()) {
+      const colmap::Point3D point = model.Point3D(id);
+      colmap::Track in_kept, in_moved;
+      for (const auto& el : point.track.Elements())
+        (kept.count(el.image_id) ? in_kept : in_moved).AddElement(el);
+      model.DeletePoint3D(id);
+      if (in_kept.Length() >= 2) model.AddPoint3D(point.xyz, in_kept);
+      if (in_moved.Length() >= 2) model.AddPoint3D(moved * point.xyz, in_moved);
+    }
+    for (const colmap::image_t id : ids) {
+      if (!kept.count(id))
+        model.Image(id).CamFromWorld() =
+            model.Image(id).CamFromWorld() * colmap::Inverse(moved);
+    }
+    return model;
+  }
+
+  static inline fs::path dir_;
+};
+
+TEST_F(MatchConsistencyTest, GroundTruthIsConsistent) {
+  const colmap::Database database(Database());
+  const MatchConsistencyOptions options;
+  const MatchConsistency c = CheckMatchConsistency(
+      ReadModel((dir_ / "gt").string()), database, options);
+  EXPECT_GT(c.num_matches, 10000);
+  EXPECT_GT(c.num_pairs, 50);
+  EXPECT_LE(c.InconsistentShare(), 0.001);
+  EXPECT_EQ(c.num_inconsistent_pairs, 0);
+  EXPECT_TRUE(c.IsConsistent(options));
+}
+
+TEST_F(MatchConsistencyTest, AGroupPlacedWronglyIsInconsistent) {
+  const colmap::Database database(Database());
+  const MatchConsistencyOptions options;
+  // A block turned by 3 degrees and shifted by a tenth of the place.
+  const colmap::Rigid3d moved(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
+      Eigen::Vector3d(1, -0.5, 0.2));
+  const MatchConsistency c =
+      CheckMatchConsistency(MoveHalf(moved), database, options);
+  EXPECT_GT(c.num_inconsistent_pairs, options.max_inconsistent_pairs);
+  EXPECT_GT(c.InconsistentShare(), options.max_inconsistent_share);
+  EXPECT_FALSE(c.IsConsistent(options));
+  // Its tracks still agree with its poses: only the matches across the
+  // split are contradicted.
+  const MatchConsistency unmoved =
+      CheckMatchConsistency(MoveHalf(colmap::Rigid3d()), database, options);
+  EXPECT_TRUE(unmoved.IsConsistent(options));
+}
+
+TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
+  ModelEvaluationOptions options;
+  options.database_path = Database();
+  const auto before = fs::last_write_time(Database());
+  const ModelEvaluation e =
+      EvaluateModel("", (dir_ / "gt").string(), options);
+  EXPECT_TRUE(e.match_consistency.checked);
+  EXPECT_TRUE(e.match_consistency.consistent);
+  EXPECT_GT(e.match_consistency.num_matches, 10000);
+  EXPECT_EQ(fs::last_write_time(Database()), before);
+}
+
+// A check no model can pass (0.01 px) makes a kernel task map once more
+// with its intrinsics held; the task still ends with a model and says so.
+TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
+  MatchConsistencyOptions strict;
+  strict.max_reprojection_error = 0.01;
+  strict.max_inconsistent_share = 0;
+  strict.max_inconsistent_pairs = 0;
+  colmap::IncrementalMapperOptions mapper;
+  mapper.num_threads = 1;
+  const std::string task_db = (dir_ / "task.db").string();
+  fs::copy_file(Database(), task_db, fs::copy_options::overwrite_existing);
+  const ReconstructionTaskResult result = RunReconstructionTask(
+      mapper, task_db, "", {}, &strict, (dir_ / "kernel").string());
+  ASSERT_TRUE(result.success) << result.message;
+  EXPECT_GE(result.num_registered + result.num_registered_in_parts, 28)
+      << result.message;
+  EXPECT_NE(result.message.find("inconsistent; redone with intrinsics"),
+            std::string::npos)
+      << result.message;
+  EXPECT_TRUE(fs::is_directory(dir_ / "kernel"));
+}
+
+}  // namespace
+}  // namespace tmr

@@ -1,0 +1,53 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// bench_adjustment DATABASE MODEL
+// Time and peak memory of tmr's refinement of a merged model (re-linked
+// tracks, global bundle adjustment, filtering: RefineMergedModel), the
+// largest step of tmr_mapper's memory. The database is read-only.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "sfm/model_merging.h"
+#include "sfm/task_database.h"
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::cerr << "usage: bench_adjustment DATABASE MODEL\n";
+    return 2;
+  }
+  auto model = std::make_shared<colmap::Reconstruction>();
+  model->Read(argv[2]);
+  std::vector<uint32_t> ids(model->RegImageIds().begin(),
+                            model->RegImageIds().end());
+  const std::string scratch =
+      (std::filesystem::temp_directory_path() / "bench_adjustment.db")
+          .string();
+  std::string error;
+  auto cache =
+      tmr::LoadTaskDatabaseCache(argv[1], ids, scratch, 15, false, &error);
+  if (!cache) {
+    std::cerr << "bench_adjustment: error: " << error << "\n";
+    return 1;
+  }
+  std::filesystem::remove(scratch);
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  std::cout << "loaded: " << ids.size() << " images, peak RSS "
+            << usage.ru_maxrss / 1024 << " MiB\n";
+  colmap::IncrementalMapperOptions options;
+  options.num_threads = 2;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string report =
+      tmr::RefineMergedModel(cache, options, true, model);
+  const double seconds = std::chrono::duration<double>(
+                             std::chrono::steady_clock::now() - start)
+                             .count();
+  getrusage(RUSAGE_SELF, &usage);
+  std::cout << "refined in " << seconds << " s, peak RSS "
+            << usage.ru_maxrss / 1024 << " MiB, mean reprojection error "
+            << model->ComputeMeanReprojectionError() << " px\n"
+            << report << "\n";
+  return 0;
+}
