@@ -6,6 +6,8 @@
 # database must be byte-identical afterwards.
 #   -DPARTITION=... -DMAPPER=... -DSYNTH=... -DSQLITE3=... -DWORK_DIR=...
 #   [-DPYTHON3=...] (for the locked-database case)
+#   [-DUNSHARE=...] (for the full-disk cases: a small tmpfs mounted in a
+#   mount namespace of its own; skipped where mounting is not allowed)
 cmake_minimum_required(VERSION 3.25)
 set(TIMEOUT 180)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -24,7 +26,9 @@ set(num_cases 0)
 
 # Runs TOOL (partition or mapper) on DB with extra ARGS; EXPECT is "error",
 # "ok" or "any" (a clear error or a result, for inputs where either is
-# right, e.g. a locked database).
+# right, e.g. a locked database). A list in `wrapper`, if set, is put
+# before the command. COLMAP's own log lines (glog: I/W/E and a date) do
+# not count as the tool's error lines.
 function(run_case name tool db expect)
   set(args ${ARGN})
   if(NOT "--output_path" IN_LIST args)
@@ -44,12 +48,14 @@ function(run_case name tool db expect)
   if(EXISTS ${db} AND NOT IS_DIRECTORY ${db})
     file(SHA256 ${db} hash_before)
   endif()
-  execute_process(COMMAND ${command} ${args} TIMEOUT ${TIMEOUT}
+  execute_process(COMMAND ${wrapper} ${command} ${args} TIMEOUT ${TIMEOUT}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   math(EXPR n "${num_cases} + 1")
   set(num_cases ${n} PARENT_SCOPE)
   set(problem "")
-  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
+  string(REGEX REPLACE "(^|\n)[IWE][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9] [^\n]*"
+         "" tool_err "${err}")
+  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${tool_err}")
   list(LENGTH error_lines num_error_lines)
   if(NOT rc MATCHES "^[0-9]+$")
     set(problem "did not exit normally: ${rc}")
@@ -74,7 +80,7 @@ function(run_case name tool db expect)
     message(STATUS "FAIL ${name} (${tool}): ${problem}\n    stderr: ${shown}")
     set(failures "${failures} ${name}/${tool}" PARENT_SCOPE)
   else()
-    string(REGEX MATCH "[^\n]*error:[^\n]*" shown_error "${err}")
+    string(REGEX MATCH "[^\n]*error:[^\n]*" shown_error "${tool_err}")
     message(STATUS "ok   ${name} (${tool}): exit ${rc} ${shown_error}")
   endif()
 endfunction()
@@ -170,6 +176,37 @@ run_case(forward_motion_above_one mapper ${good} error --Mapper.init_max_forward
 run_case(huge_number partition ${good} error --Tmr.kernel_layers 99999999999999999999)
 run_case(unknown_flag mapper ${good} error --Tmr.no_such_option 1)
 run_case(negative_min_matches partition ${good} error --min_num_matches -1)
+
+# A full disk under the output folder, at several points of the run: while
+# a task database is created (COLMAP's Database class), while task data is
+# copied, while a task runs (2 MB). A clear error, nothing that looks
+# like a finished model (no OUT/0, no report.json).
+if(UNSHARE)
+  set(mount_point ${WORK_DIR}/full_disk)
+  file(MAKE_DIRECTORY ${mount_point})
+  execute_process(COMMAND ${UNSHARE} -m sh -c
+                  "mount -t tmpfs -o size=64k tmpfs ${mount_point}"
+                  RESULT_VARIABLE mount_rc OUTPUT_QUIET ERROR_QUIET)
+  if(mount_rc EQUAL 0)
+    foreach(size 100k 600k 1200k 2m)
+      # (No semicolons: CMake would split the script into list items.)
+      set(wrapper ${UNSHARE} -m sh -c
+          "mount -t tmpfs -o size=${size} tmpfs ${mount_point} && \"$0\" \"$@\"
+rc=$?
+if [ -e ${mount_point}/out/0 ] || [ -e ${mount_point}/out/report.json ]
+then
+  echo 'half-written model left' >&2
+  exit 99
+fi
+exit $rc")
+      run_case(disk_full_${size} mapper ${good} error
+               --output_path ${mount_point}/out)
+      unset(wrapper)
+    endforeach()
+  else()
+    message(STATUS "skip full-disk cases: cannot mount a tmpfs here")
+  endif()
+endif()
 
 # A database another process holds an exclusive lock on: a clear error or
 # a result, within the timeout, never a hang.

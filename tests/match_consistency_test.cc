@@ -101,14 +101,15 @@ TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
   const auto before = fs::last_write_time(Database());
   const ModelEvaluation e =
       EvaluateModel("", (dir_ / "gt").string(), options);
-  EXPECT_TRUE(e.match_consistency.checked);
-  EXPECT_TRUE(e.match_consistency.consistent);
-  EXPECT_GT(e.match_consistency.num_matches, 10000);
+  ASSERT_TRUE(e.match_consistency.has_value());
+  EXPECT_TRUE(e.match_consistency->IsConsistent(MatchConsistencyOptions()));
+  EXPECT_GT(e.match_consistency->num_matches, 10000);
   EXPECT_EQ(fs::last_write_time(Database()), before);
 }
 
-// A check no model can pass (0.01 px) makes a kernel task map once more
-// with its intrinsics held; the task still ends with a model and says so.
+// A check no model can pass (0.01 px) makes a kernel task map again with
+// its intrinsics held (the only redo without other initial pairs); the task
+// still ends with a model and says so.
 TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
   MatchConsistencyOptions strict;
   strict.max_reprojection_error = 0.01;
@@ -123,7 +124,9 @@ TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
   ASSERT_TRUE(result.success) << result.message;
   EXPECT_GE(result.num_registered + result.num_registered_in_parts, 28)
       << result.message;
-  EXPECT_NE(result.message.find("inconsistent; redone with intrinsics"),
+  EXPECT_NE(result.message.find(
+                "inconsistent; redo from automatic initial pair with "
+                "intrinsics held: "),
             std::string::npos)
       << result.message;
   EXPECT_TRUE(fs::is_directory(dir_ / "kernel"));

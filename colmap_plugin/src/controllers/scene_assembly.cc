@@ -294,6 +294,7 @@ void SceneAssembler::Refine(
   const std::string adjustment =
       RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads_),
                         o_.refine_merged_models, scene);
+  ReleaseFreedMemory();
   const int images = static_cast<int>(scene->NumRegImages());
   record_({"refine merged model", images, images, SecondsSince(start), true,
            "tracks merged, global bundle adjustment: " + adjustment});

@@ -1,6 +1,8 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "controllers/task_workspace.h"
 
+#include <exception>
+
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/task_database.h"
 #include "tmr/io/atomic_file.h"
@@ -55,8 +57,16 @@ std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
   const std::string db = model + ".db";
   if (!WriteTaskDatabase(source_database, images, db, error))
     return std::nullopt;
-  result = run(db);
-  SaveTaskResult(result, model + ".result");
+  try {
+    result = run(db);
+  } catch (const std::exception& e) {  // e.g. COLMAP's database on a full disk
+    *error = "task " + model + ": " + e.what();
+    return std::nullopt;
+  }
+  if (!SaveTaskResult(result, model + ".result")) {
+    *error = "cannot write '" + model + ".result'";
+    return std::nullopt;
+  }
   return result;
 }
 

@@ -43,7 +43,8 @@ class TaskWorkspace {
   // resuming and its record and model are complete (`*reused` set), else
   // `run` on a task database of `images` of `source_database` written
   // beside the model, then recorded. Nothing, with `error`, when the task
-  // database cannot be written.
+  // database or its record cannot be written or `run` throws (COLMAP's
+  // database class throws on a full disk).
   std::optional<ReconstructionTaskResult> RunOrReuse(
       const std::string& model, const std::string& source_database,
       const std::vector<uint32_t>& images,

@@ -2,6 +2,9 @@
 #include "controllers/tmr_mapper_support.h"
 
 #include <glog/logging.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
@@ -63,6 +66,12 @@ std::string ReadFileToString(const std::string& path) {
   std::ostringstream content;
   content << in.rdbuf();
   return in ? content.str() : std::string();
+}
+
+void ReleaseFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {

@@ -17,6 +17,11 @@ namespace tmr {
 colmap::IncrementalMapperOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads);
 
+// Hands memory that was freed back to the system (glibc keeps freed memory
+// in per-thread arenas: an adjustment run on another worker thread than the
+// previous one would otherwise add to the peak). A no-op elsewhere.
+void ReleaseFreedMemory();
+
 // Seconds of wall time since `start`.
 double SecondsSince(std::chrono::steady_clock::time_point start);
 

@@ -206,8 +206,8 @@ std::vector<std::array<double, 3>> ReadCameraCentres(
 
 namespace {
 
-MatchConsistencyReport ReportMatchConsistency(
-    const colmap::Reconstruction& model, const std::string& database_path) {
+MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
+                                       const std::string& database_path) {
   namespace fs = std::filesystem;
   // COLMAP's Database class writes to what it opens: the model's images
   // are copied into a temporary database first (the input stays read-only).
@@ -219,23 +219,17 @@ MatchConsistencyReport ReportMatchConsistency(
   std::string error;
   if (!WriteTaskDatabase(database_path, image_ids, scratch.string(), &error))
     throw std::runtime_error(error);
-  const MatchConsistencyOptions options;
-  MatchConsistency c;
-  {
+  std::optional<MatchConsistency> result;
+  try {
     const colmap::Database database(scratch.string());
-    c = CheckMatchConsistency(model, database, options);
+    result = CheckMatchConsistency(model, database, MatchConsistencyOptions());
+  } catch (const std::exception& e) {
+    error = e.what();
   }
   std::error_code ec;
   fs::remove(scratch, ec);
-  MatchConsistencyReport report;
-  report.checked = true;
-  report.num_matches = c.num_matches;
-  report.num_tested = c.num_tested;
-  report.num_inconsistent = c.num_inconsistent;
-  report.num_pairs = c.num_pairs;
-  report.num_inconsistent_pairs = c.num_inconsistent_pairs;
-  report.consistent = c.IsConsistent(options);
-  return report;
+  if (!result) throw std::runtime_error(error);
+  return *result;
 }
 
 }  // namespace
@@ -251,7 +245,7 @@ ModelEvaluation EvaluateModel(const std::string& reference_path,
   eval.model_path = model_path;
   if (!options.database_path.empty())
     eval.match_consistency =
-        ReportMatchConsistency(model, options.database_path);
+        CheckMatchConsistency(model, options.database_path);
   return eval;
 }
 

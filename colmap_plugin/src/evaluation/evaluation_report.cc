@@ -70,15 +70,17 @@ void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
     out << "\n";
   }
   for (const ModelEvaluation& e : evaluations) {
-    const MatchConsistencyReport& c = e.match_consistency;
-    if (!c.checked) continue;
+    if (!e.match_consistency) continue;
+    const MatchConsistency& c = *e.match_consistency;
     out << "match consistency of " << e.model_path << ": "
         << c.num_inconsistent << " of " << c.num_matches
         << " verified matches (" << std::setprecision(2)
-        << 100.0 * c.num_inconsistent / std::max<int64_t>(1, c.num_matches)
-        << "%) and " << c.num_inconsistent_pairs << " of " << c.num_pairs
+        << 100.0 * c.InconsistentShare() << "%) and "
+        << c.num_inconsistent_pairs << " of " << c.num_pairs
         << " pairs inconsistent: "
-        << (c.consistent ? "consistent" : "INCONSISTENT") << "\n";
+        << (c.IsConsistent(MatchConsistencyOptions()) ? "consistent"
+                                                      : "INCONSISTENT")
+        << "\n";
   }
   out << std::defaultfloat
       << "(rotation in degrees; position as a share of the scene scale: the "
@@ -119,14 +121,15 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
       out << (k ? ", " : "") << e.track_length_histogram[k];
     }
     out << "]";
-    const MatchConsistencyReport& c = e.match_consistency;
-    if (c.checked) {
-      out << ", \"match_consistency\": {\"matches\": " << c.num_matches
-          << ", \"tested\": " << c.num_tested
-          << ", \"inconsistent\": " << c.num_inconsistent
-          << ", \"pairs\": " << c.num_pairs
-          << ", \"inconsistent_pairs\": " << c.num_inconsistent_pairs
-          << ", \"consistent\": " << (c.consistent ? "true" : "false") << "}";
+    if (const auto& c = e.match_consistency) {
+      out << ", \"match_consistency\": {\"matches\": " << c->num_matches
+          << ", \"tested\": " << c->num_tested
+          << ", \"inconsistent\": " << c->num_inconsistent
+          << ", \"pairs\": " << c->num_pairs
+          << ", \"inconsistent_pairs\": " << c->num_inconsistent_pairs
+          << ", \"consistent\": "
+          << (c->IsConsistent(MatchConsistencyOptions()) ? "true" : "false")
+          << "}";
     }
     out << "}";
   }

@@ -4,47 +4,9 @@
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction.h>
 
-#include <cstdint>
-#include <string>
+#include "tmr/colmap/match_consistency.h"
 
 namespace tmr {
-
-struct MatchConsistencyOptions {
-  // A verified match is inconsistent with the model when, triangulated from
-  // the model's poses and cameras, it reprojects farther than this (pixels)
-  // in one of its images. COLMAP verifies matches at 4 px.
-  double max_reprojection_error = 4.0;
-  // A model is inconsistent when more than this share of the verified
-  // matches between its registered images is inconsistent ...
-  double max_inconsistent_share = 0.005;
-  // ... or when more than this many image pairs are: pairs with at least
-  // min_pair_matches tested matches of which more than half are
-  // inconsistent.
-  int max_inconsistent_pairs = 5;
-  int min_pair_matches = 15;
-
-  bool Check(std::string* error = nullptr) const;
-};
-
-// Verified matches of a model's registered image pairs against its poses.
-struct MatchConsistency {
-  int64_t num_matches = 0;           // inlier matches of registered pairs
-  int64_t num_in_common_track = 0;   // both keypoints in the same 3D point
-  int64_t num_tested = 0;            // the others, triangulated in front
-  int64_t num_inconsistent = 0;      // of those, reprojecting too far
-  int num_pairs = 0;                 // registered pairs with matches
-  int num_inconsistent_pairs = 0;    // see MatchConsistencyOptions
-
-  double InconsistentShare() const {
-    return num_matches > 0 ? static_cast<double>(num_inconsistent) /
-                                 static_cast<double>(num_matches)
-                           : 0.0;
-  }
-  bool IsConsistent(const MatchConsistencyOptions& options) const {
-    return InconsistentShare() <= options.max_inconsistent_share &&
-           num_inconsistent_pairs <= options.max_inconsistent_pairs;
-  }
-};
 
 // A check of a model that needs no ground truth. A model holds only the
 // matches its tracks use; the verified matches between two registered
@@ -54,7 +16,7 @@ struct MatchConsistency {
 // constraint they were verified with); where the mapper settled a group of
 // photos in a wrong place, or traded focal length against depth, many do
 // not. On a 3,752-image tmr_synth city, COLMAP's mapper placed 27 of one
-// kernel's 70 photos 12% of the scale off: 1.8% of that kernel's verified
+// kernel's 70 photos 12% of the scale off: 1.7% of that kernel's verified
 // matches and 26 of its pairs were inconsistent; a correct kernel of the
 // same city had none. Image ids of `model` must be those of `database`.
 MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,

@@ -179,14 +179,16 @@ std::string DescribeConsistency(const MatchConsistency& c) {
 }
 
 // A kernel model that its own verified matches contradict
-// (CheckMatchConsistency) is mapped once more from the same initial pair
-// with the intrinsics held at their priors: where COLMAP's mapper went
-// wrong on a 3,752-image city, it had traded focal length against depth
-// from the initial pair on (focal lengths at 0.55x their priors). The redo
-// replaces the model when it contradicts fewer matches and registers at
-// least 90% as many images. Appends what happened to `how`.
+// (CheckMatchConsistency) is mapped again: first from the same initial pair
+// with the intrinsics held at their priors (where COLMAP's mapper went wrong
+// on a 3,752-image city, it had traded focal length against depth from the
+// initial pair on: focal lengths at 0.55x their priors), then from each
+// other candidate pair. A redo replaces the model when it contradicts fewer
+// matches and registers at least 90% as many images; the first consistent
+// one ends the search. Appends what happened to `how`.
 void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
                         const std::string& task_database,
+                        const std::vector<std::pair<int, int>>& candidate_pairs,
                         const std::pair<int, int>& initial_pair,
                         const MatchConsistencyOptions& check,
                         std::shared_ptr<colmap::Reconstruction>* model,
@@ -195,25 +197,37 @@ void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
     const colmap::Database database(task_database);  // the task's own
     return CheckMatchConsistency(m, database, check);
   };
-  const MatchConsistency first = consistency(**model);
-  if (first.IsConsistent(check)) return;
-  *how += "; " + DescribeConsistency(first);
+  MatchConsistency best = consistency(**model);
+  if (best.IsConsistent(check)) return;
+  *how += "; " + DescribeConsistency(best);
   colmap::IncrementalMapperOptions held = mapper_options;
   held.ba_refine_focal_length = false;
   held.ba_refine_principal_point = false;
   held.ba_refine_extra_params = false;
-  const auto redo = MapFromInitialPair(held, task_database, "", initial_pair);
-  if (!redo || redo->NumRegImages() < 2) {
-    *how += "; the redo with intrinsics at their priors failed";
-    return;
+  std::vector<std::pair<const colmap::IncrementalMapperOptions*,
+                        std::pair<int, int>>>
+      redos = {{&held, initial_pair}};
+  for (const auto& pair : candidate_pairs)
+    if (pair != initial_pair) redos.push_back({&mapper_options, pair});
+  for (const auto& [options, pair] : redos) {
+    *how += "; redo from " + DescribePair(pair) +
+            (options == &held ? " with intrinsics held: " : ": ");
+    const auto redo = MapFromInitialPair(*options, task_database, "", pair);
+    if (!redo || redo->NumRegImages() < 2) {
+      *how += "failed";
+      continue;
+    }
+    const MatchConsistency c = consistency(*redo);
+    const bool better =
+        c.InconsistentShare() < best.InconsistentShare() &&
+        10 * redo->NumRegImages() >= 9 * (*model)->NumRegImages();
+    *how += std::to_string(redo->NumRegImages()) + " images, " +
+            DescribeConsistency(c) + (better ? ", taken" : ", not taken");
+    if (!better) continue;
+    *model = redo;
+    best = c;
+    if (best.IsConsistent(check)) return;
   }
-  const MatchConsistency second = consistency(*redo);
-  const bool better = second.InconsistentShare() < first.InconsistentShare() &&
-                      10 * redo->NumRegImages() >= 9 * (*model)->NumRegImages();
-  *how += std::string("; redone with intrinsics at their priors (") +
-          std::to_string(redo->NumRegImages()) + " images, " +
-          DescribeConsistency(second) + "): " + (better ? "taken" : "not taken");
-  if (better) *model = redo;
 }
 
 }  // namespace
@@ -244,7 +258,7 @@ ReconstructionTaskResult RunReconstructionTask(
   // Keep the best model over the attempts; stop at one that registers
   // half of the task's images.
   std::shared_ptr<colmap::Reconstruction> best;
-  std::pair<int, int> best_pair;
+  std::pair<int, int> best_pair(-1, -1);
   for (const auto& pair : attempts) {
     const auto model =
         MapFromInitialPair(mapper_options, task_database, base_model, pair);
@@ -256,8 +270,8 @@ ReconstructionTaskResult RunReconstructionTask(
   }
   std::string how = DescribePair(best_pair);
   if (best && best->NumRegImages() >= 2 && base_model.empty() && kernel_check)
-    RedoIfInconsistent(mapper_options, task_database, best_pair, *kernel_check,
-                       &best, &how);
+    RedoIfInconsistent(mapper_options, task_database, attempts, best_pair,
+                       *kernel_check, &best, &how);
   if (best && best->NumRegImages() >= 2) {
     result.num_registered = static_cast<int>(best->NumRegImages());
     result.success = WriteModelAtomically(*best, output_model);

@@ -45,8 +45,9 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // own (several models if need be): a kernel can hold two dense groups that
 // only its full scene links, and their models may still merge later. With
 // `kernel_check`, a kernel model that contradicts its verified matches is
-// mapped once more with the intrinsics held at their priors
-// (CheckMatchConsistency; the result's message says what happened).
+// mapped again, with the intrinsics held at their priors and then from the
+// other initial pairs, until a redo passes (CheckMatchConsistency; the
+// result's message says what happened).
 // Leaf task: `base_model` is the kernel's model; the mapper extends a copy
 // of it with the task's other images, keeping the base poses fixed when
 // mapper_options.fix_existing_images is set. Leaf images linked to the

@@ -22,7 +22,12 @@ bool WriteTaskDatabase(const std::string& source_db,
   fs::remove(temporary, ec);
   fs::remove(temporary + "-wal", ec);
   fs::remove(temporary + "-shm", ec);
-  { colmap::Database create_schema(temporary); }
+  try {
+    const colmap::Database create_schema(temporary);
+  } catch (const std::exception& e) {
+    *error = "cannot create task database '" + temporary + "': " + e.what();
+    return false;
+  }
 
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(temporary.c_str(), &db,
@@ -162,9 +167,14 @@ std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
     const std::string& task_db, int min_num_matches, bool ignore_watermarks,
     std::string* error) {
   if (!WriteTaskDatabase(source_db, image_ids, task_db, error)) return nullptr;
-  colmap::Database database(task_db);
-  return colmap::DatabaseCache::Create(database, min_num_matches,
-                                       ignore_watermarks, {});
+  try {
+    const colmap::Database database(task_db);
+    return colmap::DatabaseCache::Create(database, min_num_matches,
+                                         ignore_watermarks, {});
+  } catch (const std::exception& e) {  // COLMAP's Database on a full disk
+    *error = "cannot load task database '" + task_db + "': " + e.what();
+    return nullptr;
+  }
 }
 
 }  // namespace tmr

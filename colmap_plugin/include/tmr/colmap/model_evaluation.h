@@ -3,9 +3,12 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include "tmr/colmap/match_consistency.h"
 
 namespace tmr {
 
@@ -24,26 +27,10 @@ struct ModelEvaluationOptions {
   unsigned seed = 0;
   // When set: the COLMAP database the model was reconstructed from (opened
   // read-only); its verified matches between registered images are checked
-  // against the model's poses, which needs no ground truth (see
-  // MatchConsistencyReport).
+  // against the model's poses, which needs no ground truth.
   std::string database_path;
 
   bool Check(std::string* error = nullptr) const;
-};
-
-// Verified matches of the model's registered image pairs that no common
-// track holds, triangulated with the model's poses: inconsistent when they
-// reproject farther than 4 px (COLMAP's verification threshold). A correct
-// model has (almost) none; a group of photos placed wrongly has many.
-struct MatchConsistencyReport {
-  bool checked = false;
-  int64_t num_matches = 0;       // verified inlier matches, registered pairs
-  int64_t num_tested = 0;        // not in a common track, triangulated
-  int64_t num_inconsistent = 0;  // of those, reprojecting too far
-  int num_pairs = 0;
-  int num_inconsistent_pairs = 0;  // more than half of >= 15 tested
-  bool consistent = true;  // <= 0.5% of the matches and <= 5 pairs
-
 };
 
 struct ErrorStatistics {
@@ -84,7 +71,10 @@ struct ModelEvaluation {
   std::vector<std::array<double, 3>> aligned_centres;
   // Names of the model's registered images.
   std::vector<std::string> image_names;
-  MatchConsistencyReport match_consistency;  // with options.database_path
+  // With options.database_path: the model against the database's verified
+  // matches (tmr/colmap/match_consistency.h), judged with the default
+  // MatchConsistencyOptions.
+  std::optional<MatchConsistency> match_consistency;
 };
 
 // Reads the reference and the model (COLMAP models, binary or text) and
