@@ -4,6 +4,7 @@
 // tracks, global bundle adjustment, filtering: RefineMergedModel), the
 // largest step of tmr_mapper's memory. The database is read-only.
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -18,11 +19,18 @@ int main(int argc, char** argv) {
     return 2;
   }
   auto model = std::make_shared<colmap::Reconstruction>();
-  model->Read(argv[2]);
+  try {
+    model->Read(argv[2]);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_adjustment: error: cannot read '" << argv[2]
+              << "': " << e.what() << "\n";
+    return 1;
+  }
   std::vector<uint32_t> ids(model->RegImageIds().begin(),
                             model->RegImageIds().end());
   const std::string scratch =
-      (std::filesystem::temp_directory_path() / "bench_adjustment.db")
+      (std::filesystem::temp_directory_path() /
+       ("bench_adjustment_" + std::to_string(getpid()) + ".db"))
           .string();
   std::string error;
   auto cache =

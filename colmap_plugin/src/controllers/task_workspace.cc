@@ -60,7 +60,7 @@ std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
   try {
     result = run(db);
   } catch (const std::exception& e) {  // e.g. COLMAP's database on a full disk
-    *error = "task " + model + ": " + e.what();
+    *error = model + ": " + e.what();
     return std::nullopt;
   }
   if (!SaveTaskResult(result, model + ".result")) {
