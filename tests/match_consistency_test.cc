@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <unordered_set>
 
 #include "evaluation/evaluate_reconstruction.h"
 #include "sfm/match_consistency.h"
@@ -42,22 +41,7 @@ class MatchConsistencyTest : public ::testing::Test {
     colmap::Reconstruction model = ReadModel((dir_ / "gt").string());
     std::vector<colmap::image_t> ids = model.RegImageIds();
     std::sort(ids.begin(), ids.end());
-    const std::unordered_set<colmap::image_t> kept(
-        ids.begin(), ids.begin() + ids.size() / 2);
-    for (const colmap::point3D_t id : model.Point3DIds()) {
-      const colmap::Point3D point = model.Point3D(id);
-      colmap::Track in_kept, in_moved;
-      for (const auto& el : point.track.Elements())
-        (kept.count(el.image_id) ? in_kept : in_moved).AddElement(el);
-      model.DeletePoint3D(id);
-      if (in_kept.Length() >= 2) model.AddPoint3D(point.xyz, in_kept);
-      if (in_moved.Length() >= 2) model.AddPoint3D(moved * point.xyz, in_moved);
-    }
-    for (const colmap::image_t id : ids) {
-      if (!kept.count(id))
-        model.Image(id).CamFromWorld() =
-            model.Image(id).CamFromWorld() * colmap::Inverse(moved);
-    }
+    MoveGroupApart({ids.begin() + ids.size() / 2, ids.end()}, moved, &model);
     return model;
   }
 

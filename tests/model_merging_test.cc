@@ -208,26 +208,12 @@ TEST_F(ModelMergingTest, ASourceThatFitsOnlyAtItsAnchorImageStaysApart) {
 TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
   const std::vector<colmap::image_t> place = Images("place0/");
   const size_t half = place.size() / 2;
-  const std::unordered_set<colmap::image_t> kernel(place.begin(),
-                                                   place.begin() + half);
   colmap::Reconstruction bad = Keep(place);
-  const colmap::Rigid3d moved(
-      Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
-      Eigen::Vector3d(2, -1, 0.5));
-  for (const colmap::point3D_t id : bad.Point3DIds()) {
-    const colmap::Point3D point = bad.Point3D(id);
-    colmap::Track in_kernel, in_leaf;
-    for (const auto& el : point.track.Elements())
-      (kernel.count(el.image_id) ? in_kernel : in_leaf).AddElement(el);
-    bad.DeletePoint3D(id);
-    if (in_kernel.Length() >= 2) bad.AddPoint3D(point.xyz, in_kernel);
-    if (in_leaf.Length() >= 2) bad.AddPoint3D(moved * point.xyz, in_leaf);
-  }
-  for (const colmap::image_t id : place) {
-    if (!kernel.count(id))
-      bad.Image(id).CamFromWorld() =
-          bad.Image(id).CamFromWorld() * colmap::Inverse(moved);
-  }
+  MoveGroupApart({place.begin() + half, place.end()},
+                 colmap::Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(
+                                     0.05, Eigen::Vector3d::UnitZ())),
+                                 Eigen::Vector3d(2, -1, 0.5)),
+                 &bad);
   const fs::path work = dir_ / "leaf_merge";
   fs::create_directories(work / "kernel");
   fs::create_directories(work / "bad");

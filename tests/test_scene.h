@@ -2,10 +2,12 @@
 // A tmr_synth scene for a test suite's fixture.
 #pragma once
 
+#include <colmap/scene/reconstruction.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <string>
+#include <unordered_set>
 
 #include "tmr/colmap/synthetic_scene.h"
 
@@ -27,6 +29,28 @@ inline std::filesystem::path WriteTestScene(
     return {};
   }
   return dir;
+}
+
+// What a mapper that placed a group of photos badly leaves: the images in
+// `group` moved by `moved` as one rigid block, every track split into the
+// group's part (moved with them) and the rest's (kept), each kept when it
+// still has two images.
+inline void MoveGroupApart(const std::unordered_set<colmap::image_t>& group,
+                           const colmap::Rigid3d& moved,
+                           colmap::Reconstruction* model) {
+  for (const colmap::point3D_t id : model->Point3DIds()) {
+    const colmap::Point3D point = model->Point3D(id);
+    colmap::Track in_rest, in_group;
+    for (const auto& el : point.track.Elements())
+      (group.count(el.image_id) ? in_group : in_rest).AddElement(el);
+    model->DeletePoint3D(id);
+    if (in_rest.Length() >= 2) model->AddPoint3D(point.xyz, in_rest);
+    if (in_group.Length() >= 2) model->AddPoint3D(moved * point.xyz, in_group);
+  }
+  for (const colmap::image_t id : group) {
+    model->Image(id).CamFromWorld() =
+        model->Image(id).CamFromWorld() * colmap::Inverse(moved);
+  }
 }
 
 }  // namespace tmr
