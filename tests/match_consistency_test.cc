@@ -83,8 +83,7 @@ TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
   ModelEvaluationOptions options;
   options.database_path = Database();
   const auto before = fs::last_write_time(Database());
-  const ModelEvaluation e =
-      EvaluateModel("", (dir_ / "gt").string(), options);
+  const ModelEvaluation e = EvaluateModel("", (dir_ / "gt").string(), options);
   ASSERT_TRUE(e.match_consistency.has_value());
   EXPECT_TRUE(e.match_consistency->IsConsistent(MatchConsistencyOptions()));
   EXPECT_GT(e.match_consistency->num_matches, 10000);
@@ -108,10 +107,10 @@ TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
   ASSERT_TRUE(result.success) << result.message;
   EXPECT_GE(result.num_registered + result.num_registered_in_parts, 28)
       << result.message;
-  EXPECT_NE(result.message.find(
-                "inconsistent; redo from automatic initial pair with "
-                "intrinsics held: "),
-            std::string::npos)
+  EXPECT_NE(
+      result.message.find("inconsistent; redo from automatic initial pair with "
+                          "intrinsics held: "),
+      std::string::npos)
       << result.message;
   EXPECT_TRUE(fs::is_directory(dir_ / "kernel"));
 }

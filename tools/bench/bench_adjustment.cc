@@ -49,9 +49,9 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   const std::string report =
       tmr::RefineMergedModel(cache, options, true, model);
-  const double seconds = std::chrono::duration<double>(
-                             std::chrono::steady_clock::now() - start)
-                             .count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
   getrusage(RUSAGE_SELF, &usage);
   std::cout << "refined in " << seconds << " s, peak RSS "
             << usage.ru_maxrss / 1024 << " MiB, mean reprojection error "

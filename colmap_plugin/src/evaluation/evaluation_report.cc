@@ -72,10 +72,9 @@ void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
   for (const ModelEvaluation& e : evaluations) {
     if (!e.match_consistency) continue;
     const MatchConsistency& c = *e.match_consistency;
-    out << "match consistency of " << e.model_path << ": "
-        << c.num_inconsistent << " of " << c.num_matches
-        << " verified matches (" << std::setprecision(2)
-        << 100.0 * c.InconsistentShare() << "%) and "
+    out << "match consistency of " << e.model_path << ": " << c.num_inconsistent
+        << " of " << c.num_matches << " verified matches ("
+        << std::setprecision(2) << 100.0 * c.InconsistentShare() << "%) and "
         << c.num_inconsistent_pairs << " of " << c.num_pairs
         << " pairs inconsistent: "
         << (c.IsConsistent(MatchConsistencyOptions()) ? "consistent"

@@ -3,9 +3,9 @@
 
 #include <colmap/geometry/triangulation.h>
 #include <colmap/scene/projection.h>
-#include <stdexcept>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace tmr {
@@ -38,9 +38,8 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
   for (size_t i = 0; i < pair_ids.size(); ++i) {
     const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_ids[i]);
     const auto& matches = geometries[i].inlier_matches;
-    if (matches.empty() || !model.ExistsImage(id1) ||
-        !model.ExistsImage(id2) || !model.IsImageRegistered(id1) ||
-        !model.IsImageRegistered(id2))
+    if (matches.empty() || !model.ExistsImage(id1) || !model.ExistsImage(id2) ||
+        !model.IsImageRegistered(id1) || !model.IsImageRegistered(id2))
       continue;
     const colmap::Image& image1 = model.Image(id1);
     const colmap::Image& image2 = model.Image(id2);
@@ -61,21 +60,18 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
         ++result.num_in_common_track;
         continue;
       }
-      const Eigen::Vector3d xyz =
-          colmap::TriangulatePoint(pose1, pose2, camera1.CamFromImg(p1.xy),
-                                   camera2.CamFromImg(p2.xy));
+      const Eigen::Vector3d xyz = colmap::TriangulatePoint(
+          pose1, pose2, camera1.CamFromImg(p1.xy), camera2.CamFromImg(p2.xy));
       // A match behind a camera cannot be placed at all: a wrong match
       // consistent with the epipolar geometry, not evidence against poses.
       if (!xyz.allFinite() || !colmap::HasPointPositiveDepth(pose1, xyz) ||
           !colmap::HasPointPositiveDepth(pose2, xyz))
         continue;
       ++tested;
-      if (colmap::CalculateSquaredReprojectionError(p1.xy, xyz, pose1,
-                                                    camera1) >
-              max_squared_error ||
-          colmap::CalculateSquaredReprojectionError(p2.xy, xyz, pose2,
-                                                    camera2) >
-              max_squared_error)
+      if (colmap::CalculateSquaredReprojectionError(
+              p1.xy, xyz, pose1, camera1) > max_squared_error ||
+          colmap::CalculateSquaredReprojectionError(
+              p2.xy, xyz, pose2, camera2) > max_squared_error)
         ++inconsistent;
     }
     result.num_tested += tested;

@@ -204,8 +204,8 @@ void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
   held.ba_refine_focal_length = false;
   held.ba_refine_principal_point = false;
   held.ba_refine_extra_params = false;
-  std::vector<std::pair<const colmap::IncrementalMapperOptions*,
-                        std::pair<int, int>>>
+  std::vector<
+      std::pair<const colmap::IncrementalMapperOptions*, std::pair<int, int>>>
       redos = {{&held, initial_pair}};
   for (const auto& pair : candidate_pairs)
     if (pair != initial_pair) redos.push_back({&mapper_options, pair});

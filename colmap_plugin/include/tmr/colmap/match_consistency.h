@@ -28,12 +28,12 @@ struct MatchConsistencyOptions {
 
 // Verified matches of a model's registered image pairs against its poses.
 struct MatchConsistency {
-  int64_t num_matches = 0;           // inlier matches of registered pairs
-  int64_t num_in_common_track = 0;   // both keypoints in the same 3D point
-  int64_t num_tested = 0;            // the others, triangulated in front
-  int64_t num_inconsistent = 0;      // of those, reprojecting too far
-  int num_pairs = 0;                 // registered pairs with matches
-  int num_inconsistent_pairs = 0;    // see MatchConsistencyOptions
+  int64_t num_matches = 0;          // inlier matches of registered pairs
+  int64_t num_in_common_track = 0;  // both keypoints in the same 3D point
+  int64_t num_tested = 0;           // the others, triangulated in front
+  int64_t num_inconsistent = 0;     // of those, reprojecting too far
+  int num_pairs = 0;                // registered pairs with matches
+  int num_inconsistent_pairs = 0;   // see MatchConsistencyOptions
 
   double InconsistentShare() const {
     return num_matches > 0 ? static_cast<double>(num_inconsistent) /
