@@ -224,7 +224,8 @@ TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
 
   const ClusterMerge merge =
       MergeLeafModels(work / "kernel", {work / "bad", work / "good"}, *cache_,
-                      colmap::IncrementalMapperOptions(), 12, /*refine=*/false);
+                      colmap::IncrementalMapperOptions(), 12, /*refine=*/false,
+                      /*max_block_images=*/0);
   EXPECT_EQ(merge.num_merged, 1);
   ASSERT_EQ(merge.left_out.size(), 1u);
   EXPECT_EQ(merge.left_out[0].leaf, 0);

@@ -1,8 +1,10 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// bench_adjustment DATABASE MODEL
+// bench_adjustment DATABASE MODEL [MAX_BLOCK_IMAGES]
 // Time and peak memory of tmr's refinement of a merged model (re-linked
 // tracks, global bundle adjustment, filtering: RefineMergedModel), the
-// largest step of tmr_mapper's memory. The database is read-only.
+// largest step of tmr_mapper's memory; whole (default) or by blocks of at
+// most MAX_BLOCK_IMAGES (--Tmr.ba_max_block_images). The database is
+// read-only.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -14,10 +16,11 @@
 #include "sfm/task_database.h"
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::cerr << "usage: bench_adjustment DATABASE MODEL\n";
+  if (argc != 3 && argc != 4) {
+    std::cerr << "usage: bench_adjustment DATABASE MODEL [MAX_BLOCK_IMAGES]\n";
     return 2;
   }
+  const size_t max_block_images = argc == 4 ? std::stoul(argv[3]) : 0;
   auto model = std::make_shared<colmap::Reconstruction>();
   try {
     model->Read(argv[2]);
@@ -48,7 +51,7 @@ int main(int argc, char** argv) {
   options.num_threads = 2;
   const auto start = std::chrono::steady_clock::now();
   const std::string report =
-      tmr::RefineMergedModel(cache, options, true, model);
+      tmr::RefineMergedModel(cache, options, true, max_block_images, model);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

@@ -64,7 +64,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
                              const colmap::IncrementalMapperOptions& mapper,
-                             int min_shared_tracks, bool refine) {
+                             int min_shared_tracks, bool refine,
+                             size_t max_block_images) {
   // COLMAP's thresholds for its own reprojection-verified alignment
   // (MergeReconstructions); the shared tracks are held to the same 8 px.
   constexpr double kMaxReprojErrorPx = 8.0;
@@ -101,7 +102,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
   }
   if (merge.num_merged > 0) {
     merge.adjustment =
-        RefineMergedModel(std::move(cache), mapper, refine, merge.model);
+        RefineMergedModel(std::move(cache), mapper, refine, max_block_images,
+                          merge.model);
   }
   return merge;
 }
@@ -293,7 +295,7 @@ void SceneAssembler::Refine(
   const auto start = Clock::now();
   const std::string adjustment =
       RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads_),
-                        o_.refine_merged_models, scene);
+                        o_.refine_merged_models, o_.ba_max_block_images, scene);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->NumRegImages());
   record_({"refine merged model", images, images, SecondsSince(start), true,

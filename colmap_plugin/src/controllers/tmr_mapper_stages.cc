@@ -287,7 +287,8 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
   const ClusterMerge merge =
       MergeLeafModels(work_.KernelModel(k), leaf_models, std::move(cache),
                       ColmapOptions(o_.mapper, num_threads),
-                      o_.merge_min_shared_tracks, o_.refine_merged_models);
+                      o_.merge_min_shared_tracks, o_.refine_merged_models,
+                      o_.ba_max_block_images);
   ReleaseFreedMemory();
   for (const auto& [i, reason] : merge.left_out) {
     notes->push_back("leaf " + std::to_string(k) + "." +

@@ -119,6 +119,8 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("Tmr.task_ba_global_ratio must be > 1");
   if (!(merge_refine_growth >= 1.0 && std::isfinite(merge_refine_growth)))
     return fail("Tmr.merge_refine_growth must be >= 1");
+  if (ba_max_block_images < 0)
+    return fail("Tmr.ba_max_block_images must be >= 0");
   if (mapper.min_num_matches < 1)
     return fail("Mapper.min_num_matches must be >= 1");
   if (mapper.min_model_size < 1)

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "sfm/block_adjustment.h"
+
 namespace tmr {
 namespace {
 
@@ -240,28 +242,25 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 
 std::string AdjustMergedBundle(
     const colmap::IncrementalMapperOptions& mapper_options,
-    colmap::IncrementalMapper* mapper) {
+    size_t max_block_images, colmap::IncrementalMapper* mapper) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
   const std::vector<colmap::image_t>& images = model.RegImageIds();
   if (images.size() < 2) return "";
   mapper->ObservationManager().FilterObservationsWithNegativeDepth();
+  const colmap::BundleAdjustmentOptions options =
+      mapper_options.GlobalBundleAdjustment();
+  if (max_block_images > 0 && images.size() > max_block_images)
+    return AdjustByBlocks(options, max_block_images, &model);
   colmap::BundleAdjustmentConfig config;
   for (const colmap::image_t id : images) config.AddImage(id);
   config.SetConstantCamPose(images[0]);
   config.SetConstantCamPositions(images[1], {0});
-  const colmap::BundleAdjustmentOptions options =
-      mapper_options.GlobalBundleAdjustment();
   colmap::BundleAdjuster adjuster(options, config);
   const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
   adjuster.SetUpProblem(&model, loss.get());
   if (adjuster.Problem()->NumResiduals() == 0) return "";
-  ceres::Solver::Options solver =
-      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
-  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
-      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
-    solver.linear_solver_type = ceres::SPARSE_SCHUR;
-  }
-  solver.function_tolerance = 1e-6;
+  const ceres::Solver::Options solver =
+      MergedModelSolverOptions(adjuster, options);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, adjuster.Problem().get(), &summary);
   return std::string(ceres::LinearSolverTypeToString(
@@ -272,7 +271,7 @@ std::string AdjustMergedBundle(
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool global_bundle_adjustment,
+    bool global_bundle_adjustment, size_t max_block_images,
     const std::shared_ptr<colmap::Reconstruction>& model) {
   colmap::IncrementalMapper mapper(database_cache);
   mapper.BeginReconstruction(model);
@@ -281,7 +280,7 @@ std::string RefineMergedModel(
   mapper.Retriangulate(triangulation);
   std::string report;
   if (global_bundle_adjustment)
-    report = AdjustMergedBundle(mapper_options, &mapper);
+    report = AdjustMergedBundle(mapper_options, max_block_images, &mapper);
   mapper.FilterPoints(mapper_options.Mapper());
   mapper.EndReconstruction(/*discard=*/false);
   return report;

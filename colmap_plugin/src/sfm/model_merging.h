@@ -82,26 +82,28 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
 // loss and gauge (IncrementalMapper::AdjustGlobalBundle), but a direct
-// sparse Schur solver at every size and Ceres' convergence test (relative
-// cost change below 1e-6). COLMAP switches to an iterative solver above
-// 1,000 images and runs its global adjustments to the iteration limit
-// (function tolerance 0); on a merged 1,087-image city that took 648 s and
-// left a median rotation error of 0.039 deg against the stock mapper's
-// 0.017. Memory is the problem's, not the solver's: on a 3,749-image model
-// both solvers held 9.7 GB. Returns the solver's name and Ceres' one-line
-// report, empty when there was nothing to adjust.
+// sparse Schur solver at every size and Ceres' convergence test
+// (MergedModelSolverOptions). COLMAP switches to an iterative solver above
+// 1,000 images and runs its global adjustments to the iteration limit; on a
+// merged 1,087-image city that took 648 s and left a median rotation error
+// of 0.039 deg against the stock mapper's 0.017. A model of more than
+// max_block_images (0: no limit) is adjusted by blocks of that many
+// (AdjustByBlocks): memory is the problem's, not the solver's (on a
+// 3,749-image model both solvers held 9.7 GB). Returns the solver's name
+// and Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
     const colmap::IncrementalMapperOptions& mapper_options,
-    colmap::IncrementalMapper* mapper);
+    size_t max_block_images, colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment
-// (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
-// registering images. Returns the adjustment's report (AdjustMergedBundle).
+// (AdjustMergedBundle, by blocks above max_block_images) and point
+// filtering, as COLMAP's mapper does after registering images. Returns the
+// adjustment's report (AdjustMergedBundle).
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool global_bundle_adjustment,
+    bool global_bundle_adjustment, size_t max_block_images,
     const std::shared_ptr<colmap::Reconstruction>& model);
 
 }  // namespace tmr

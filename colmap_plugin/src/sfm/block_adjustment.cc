@@ -1,0 +1,154 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "sfm/block_adjustment.h"
+
+#include <algorithm>
+#include <deque>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace tmr {
+namespace {
+
+// Calls visit(other) for every registered image that shares a 3D point with
+// `image_id` (once per shared observation).
+template <typename Visit>
+void ForEachCovisibleImage(const colmap::Reconstruction& model,
+                           colmap::image_t image_id, const Visit& visit) {
+  for (const colmap::Point2D& point2D : model.Image(image_id).Points2D()) {
+    if (!point2D.HasPoint3D()) continue;
+    for (const colmap::TrackElement& element :
+         model.Point3D(point2D.point3D_id).track.Elements()) {
+      if (element.image_id != image_id) visit(element.image_id);
+    }
+  }
+}
+
+// Breadth-first order over images not yet `taken` (marked taken as they are
+// reached), from `seed`, stopping after max_images.
+std::vector<colmap::image_t> GrowBreadthFirst(
+    const colmap::Reconstruction& model, colmap::image_t seed,
+    size_t max_images, std::unordered_set<colmap::image_t>* taken) {
+  std::vector<colmap::image_t> order = {seed};
+  taken->insert(seed);
+  for (size_t next = 0; next < order.size() && order.size() < max_images;
+       ++next) {
+    ForEachCovisibleImage(model, order[next], [&](colmap::image_t other) {
+      if (order.size() < max_images && model.IsImageRegistered(other) &&
+          taken->insert(other).second) {
+        order.push_back(other);
+      }
+    });
+  }
+  return order;
+}
+
+}  // namespace
+
+std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
+    const colmap::Reconstruction& model, size_t max_images,
+    bool from_far_end) {
+  if (max_images == 0)
+    throw std::invalid_argument("CovisibleImageBlocks: max_images is 0");
+  std::vector<colmap::image_t> ids = model.RegImageIds();
+  std::sort(ids.begin(), ids.end());
+  // Seed order: the whole model breadth-first, component after component.
+  std::vector<colmap::image_t> seeds;
+  std::unordered_set<colmap::image_t> reached;
+  for (const colmap::image_t id : ids) {
+    if (reached.count(id)) continue;
+    const auto component = GrowBreadthFirst(model, id, ids.size(), &reached);
+    seeds.insert(seeds.end(), component.begin(), component.end());
+  }
+  if (from_far_end) std::reverse(seeds.begin(), seeds.end());
+  std::vector<std::vector<colmap::image_t>> blocks;
+  std::unordered_set<colmap::image_t> taken;
+  for (const colmap::image_t seed : seeds) {
+    if (!taken.count(seed))
+      blocks.push_back(GrowBreadthFirst(model, seed, max_images, &taken));
+  }
+  return blocks;
+}
+
+ceres::Solver::Options MergedModelSolverOptions(
+    colmap::BundleAdjuster& adjuster,
+    const colmap::BundleAdjustmentOptions& options) {
+  ceres::Solver::Options solver =
+      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
+  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
+      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
+    solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  }
+  solver.function_tolerance = 1e-6;
+  return solver;
+}
+
+BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
+                            const colmap::BundleAdjustmentOptions& options,
+                            colmap::Reconstruction* model) {
+  BlockAdjustment result;
+  if (block.empty()) return result;
+  const std::unordered_set<colmap::image_t> inside(block.begin(), block.end());
+  colmap::BundleAdjustmentConfig config;
+  for (const colmap::image_t id : block) {
+    config.AddImage(id);
+    for (const colmap::Point2D& point2D : model->Image(id).Points2D()) {
+      if (!point2D.HasPoint3D() || config.HasVariablePoint(point2D.point3D_id))
+        continue;
+      for (const colmap::TrackElement& element :
+           model->Point3D(point2D.point3D_id).track.Elements()) {
+        if (!inside.count(element.image_id)) {
+          config.AddVariablePoint(point2D.point3D_id);
+          break;
+        }
+      }
+    }
+  }
+  if (config.NumVariablePoints() == 0) {
+    config.SetConstantCamPose(block[0]);
+    if (block.size() > 1) config.SetConstantCamPositions(block[1], {0});
+  }
+  colmap::BundleAdjuster adjuster(options, config);
+  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
+  adjuster.SetUpProblem(model, loss.get());
+  if (adjuster.Problem()->NumResiduals() == 0) return result;
+  const ceres::Solver::Options solver =
+      MergedModelSolverOptions(adjuster, options);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, adjuster.Problem().get(), &summary);
+  result.num_iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  return result;
+}
+
+std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
+                           size_t max_block_images,
+                           colmap::Reconstruction* model) {
+  std::ostringstream report;
+  report << "SPARSE_SCHUR by blocks of at most " << max_block_images
+         << " images:";
+  for (const bool from_far_end : {false, true}) {
+    const auto blocks =
+        CovisibleImageBlocks(*model, max_block_images, from_far_end);
+    BlockAdjustment sum;
+    int converged = 0;
+    for (const auto& block : blocks) {
+      const BlockAdjustment adjusted = AdjustBlock(block, options, model);
+      sum.num_iterations += adjusted.num_iterations;
+      sum.initial_cost += adjusted.initial_cost;
+      sum.final_cost += adjusted.final_cost;
+      converged += adjusted.converged ? 1 : 0;
+    }
+    report << (from_far_end ? "; pass 2: " : " pass 1: ") << blocks.size()
+           << " blocks (" << converged << " converged), "
+           << sum.num_iterations << " iterations, cost " << sum.initial_cost
+           << " -> " << sum.final_cost;
+  }
+  return report.str();
+}
+
+}  // namespace tmr

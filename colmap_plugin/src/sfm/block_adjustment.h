@@ -1,0 +1,59 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+//
+// Bundle adjustment of a merged model whose whole problem would not fit the
+// memory one wants to spend: the model is adjusted block by block.
+#pragma once
+
+#include <colmap/estimators/bundle_adjustment.h>
+#include <colmap/scene/reconstruction.h>
+
+#include <string>
+#include <vector>
+
+namespace tmr {
+
+// Cuts the registered images of `model` into blocks of at most max_images
+// that are each grown breadth-first over shared 3D points (region growing
+// on the co-visibility graph). Seeds are taken in the breadth-first order
+// of the whole model from its smallest image id, or in the reverse of that
+// order (`from_far_end`), so that the two orders put block boundaries in
+// different places. Every registered image is in exactly one block.
+std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
+    const colmap::Reconstruction& model, size_t max_images, bool from_far_end);
+
+// One block's adjustment, as COLMAP's local bundle adjustment
+// (IncrementalMapper::AdjustLocalBundle) with the block for its window: the
+// block's poses, cameras and points are free; a point that images outside
+// the block also observe keeps those observations, with their poses held.
+// A block that no outside image constrains gets COLMAP's global gauge
+// (first pose and one coordinate of the second position held).
+struct BlockAdjustment {
+  int num_iterations = 0;
+  bool converged = false;
+  double initial_cost = 0;
+  double final_cost = 0;
+};
+BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
+                            const colmap::BundleAdjustmentOptions& options,
+                            colmap::Reconstruction* model);
+
+// Block coordinate descent of the whole model's bundle adjustment: blocks
+// of at most max_block_images (CovisibleImageBlocks), each adjusted in turn
+// (AdjustBlock), in two passes whose block boundaries differ (the second
+// pass grows blocks from the far end), so that a seam left on a boundary by
+// the first pass lies inside a block in the second. Memory is that of one
+// block's problem (~870 bytes per observation) instead of the whole
+// model's. Returns a one-line report.
+std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
+                           size_t max_block_images,
+                           colmap::Reconstruction* model);
+
+// Ceres options for tmr's adjustments of merged models: COLMAP's, with a
+// direct sparse Schur solver at every size (COLMAP switches to an iterative
+// one above 1,000 images) and Ceres' convergence test (relative cost change
+// below 1e-6; COLMAP's global adjustments run to the iteration limit).
+ceres::Solver::Options MergedModelSolverOptions(
+    colmap::BundleAdjuster& adjuster,
+    const colmap::BundleAdjustmentOptions& options);
+
+}  // namespace tmr
