@@ -37,13 +37,27 @@ BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
                             const colmap::BundleAdjustmentOptions& options,
                             colmap::Reconstruction* model);
 
-// Block coordinate descent of the whole model's bundle adjustment: blocks
-// of at most max_block_images (CovisibleImageBlocks), each adjusted in turn
-// (AdjustBlock), in two passes whose block boundaries differ (the second
-// pass grows blocks from the far end), so that a seam left on a boundary by
-// the first pass lies inside a block in the second. Memory is that of one
-// block's problem (~870 bytes per observation) instead of the whole
-// model's. Returns a one-line report.
+// Global bundle adjustment of every pose and camera of the model
+// (COLMAP's residuals, loss and gauge, MergedModelSolverOptions).
+std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
+                             colmap::Reconstruction* model);
+
+// The registered images of `model` with only the points that are among the
+// points_per_image longest tracks of some image (ids kept): the points
+// that tie a large model together.
+colmap::Reconstruction ModelOfLongestTracks(
+    const colmap::Reconstruction& model, size_t points_per_image);
+
+// Bundle adjustment of a large model in two steps whose memory is a part of
+// the whole problem's: (1) every pose and camera adjusted together on the
+// 500 longest tracks of each image (ModelOfLongestTracks, AdjustWholeModel),
+// which closes the model's loops and fixes its large-scale shape; (2) one
+// pass over blocks of at most max_block_images (CovisibleImageBlocks), each
+// adjusted with all its points (AdjustBlock), which fits the points left
+// out of step 1 and the fine detail. Block passes alone converge slowly on
+// the large-scale shape: two passes (no step 1) left a 3,749-image city at
+// 0.051 deg median rotation error where the whole adjustment reached 0.020.
+// Returns a one-line report.
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model);

@@ -251,21 +251,7 @@ std::string AdjustMergedBundle(
       mapper_options.GlobalBundleAdjustment();
   if (max_block_images > 0 && images.size() > max_block_images)
     return AdjustByBlocks(options, max_block_images, &model);
-  colmap::BundleAdjustmentConfig config;
-  for (const colmap::image_t id : images) config.AddImage(id);
-  config.SetConstantCamPose(images[0]);
-  config.SetConstantCamPositions(images[1], {0});
-  colmap::BundleAdjuster adjuster(options, config);
-  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
-  adjuster.SetUpProblem(&model, loss.get());
-  if (adjuster.Problem()->NumResiduals() == 0) return "";
-  const ceres::Solver::Options solver =
-      MergedModelSolverOptions(adjuster, options);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  return std::string(ceres::LinearSolverTypeToString(
-             solver.linear_solver_type)) +
-         ": " + summary.BriefReport();
+  return AdjustWholeModel(options, &model);
 }
 
 std::string RefineMergedModel(
