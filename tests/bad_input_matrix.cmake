@@ -6,8 +6,9 @@
 # database must be byte-identical afterwards.
 #   -DPARTITION=... -DMAPPER=... -DSYNTH=... -DSQLITE3=... -DWORK_DIR=...
 #   [-DPYTHON3=...] (for the locked-database case)
-#   [-DUNSHARE=...] (for the full-disk cases: a small tmpfs mounted in a
-#   mount namespace of its own; skipped where mounting is not allowed)
+#   [-DUNSHARE=...] (for the full-disk and read-only-filesystem cases: a
+#   small tmpfs or a read-only bind mount in a mount namespace of its own;
+#   skipped where mounting is not allowed)
 cmake_minimum_required(VERSION 3.25)
 set(TIMEOUT 180)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -203,8 +204,27 @@ exit $rc")
                --output_path ${mount_point}/out)
       unset(wrapper)
     endforeach()
+
+    # A read-only filesystem (a read-only bind mount, which binds root as
+    # well): the database on it is read as it is, also one in WAL mode
+    # (SQLite needs its -shm file writable: a clear error or a result); an
+    # output folder on it is a clear error.
+    set(ro_dir ${WORK_DIR}/read_only)
+    file(MAKE_DIRECTORY ${ro_dir})
+    file(COPY_FILE ${good} ${ro_dir}/database.db)
+    file(COPY_FILE ${good} ${ro_dir}/wal.db)
+    execute_process(COMMAND ${SQLITE3} ${ro_dir}/wal.db "PRAGMA journal_mode=WAL"
+                    OUTPUT_QUIET)
+    set(wrapper ${UNSHARE} -m sh -c
+        "mount --bind ${ro_dir} ${ro_dir} && mount -o remount,bind,ro ${ro_dir} && \"$0\" \"$@\"")
+    run_case(read_only_fs_db_partition partition ${ro_dir}/database.db ok)
+    run_case(read_only_fs_db_mapper mapper ${ro_dir}/database.db ok)
+    run_case(read_only_fs_wal_db mapper ${ro_dir}/wal.db any)
+    run_case(read_only_fs_output mapper ${good} error
+             --output_path ${ro_dir}/out)
+    unset(wrapper)
   else()
-    message(STATUS "skip full-disk cases: cannot mount a tmpfs here")
+    message(STATUS "skip full-disk and read-only cases: cannot mount here")
   endif()
 endif()
 

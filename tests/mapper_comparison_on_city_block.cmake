@@ -4,7 +4,10 @@
 #   rotation error below 0.5 degrees (the scene is a fair test);
 # - tmr_mapper registers >= 98% of what stock registers, and its median
 #   rotation error is no worse (up to bundle-adjustment noise: 25% or
-#   0.01 degrees, whichever is larger); no model of either is a wrong merge.
+#   0.01 degrees, whichever is larger); no model of either is a wrong merge;
+# - the same for tmr_mapper with its merged models adjusted by blocks of at
+#   most 60 images (--Tmr.ba_max_block_images, default 1,000, which a
+#   scene of this size does not reach).
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/stock ${WORK_DIR}/images)
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
@@ -16,12 +19,18 @@ run(${COLMAP} mapper --database_path ${WORK_DIR}/database.db
     --Mapper.num_threads 2)
 run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
     --output_path ${WORK_DIR}/tmr --Mapper.num_threads 2)
+run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
+    --output_path ${WORK_DIR}/tmr_blocks --Mapper.num_threads 2
+    --Tmr.ba_max_block_images 60)
 run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/stock
     --output_json ${WORK_DIR}/stock.json)
 run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/tmr
     --output_json ${WORK_DIR}/tmr.json)
 largest_model(${WORK_DIR}/stock.json stock)
 largest_model(${WORK_DIR}/tmr.json tmr)
+run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/tmr_blocks
+    --output_json ${WORK_DIR}/tmr_blocks.json)
+largest_model(${WORK_DIR}/tmr_blocks.json blocks)
 
 math(EXPR needed "(${stock_images} * 95 + 99) / 100")
 if(stock_registered LESS needed)
@@ -35,6 +44,12 @@ if(tmr_registered LESS needed)
   message(FATAL_ERROR "tmr_mapper: registered ${tmr_registered} < 98% of stock's ${stock_registered}")
 endif()
 expect_rotation_no_worse(${tmr_rotation} ${stock_rotation} 125 10000 tmr_mapper)
-if(stock_wrong OR tmr_wrong)
-  message(FATAL_ERROR "wrong merge flagged (stock ${stock_wrong}, tmr_mapper ${tmr_wrong})")
+if(blocks_registered LESS needed)
+  message(FATAL_ERROR "tmr_mapper by blocks: registered ${blocks_registered} < 98% of stock's ${stock_registered}")
 endif()
+expect_rotation_no_worse(${blocks_rotation} ${stock_rotation} 125 10000
+                         "tmr_mapper by blocks")
+if(stock_wrong OR tmr_wrong OR blocks_wrong)
+  message(FATAL_ERROR "wrong merge flagged (stock ${stock_wrong}, tmr_mapper ${tmr_wrong}, by blocks ${blocks_wrong})")
+endif()
+message(STATUS "median rotation error: stock ${stock_rotation}, tmr_mapper ${tmr_rotation}, by blocks ${blocks_rotation}")

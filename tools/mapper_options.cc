@@ -115,12 +115,17 @@ std::string ProjectIni(const po::options_description& desc,
 
 bool DrawMapperPartitionPicture(const TmrMapperOptions& o) {
   // The force-directed layout takes minutes beyond this size.
-  constexpr int kMaxPictureImages = 20000;
+  // (The tree's size decides before the match graph is read.)
+  constexpr size_t kMaxPictureImages = 20000;
+  const fs::path tree_path = fs::path(o.output_path) / "tree.json";
+  std::ifstream tree_file(tree_path);
+  if (ReadTmrTreeJson(tree_file).image_names.size() > kMaxPictureImages)
+    return false;
   const MatchGraph graph = ReadMatchGraph(o.database_path, o.match_graph);
-  if (graph.NumImages() > kMaxPictureImages) return false;
   std::vector<std::string> names;
   for (const auto& image : graph.images) names.push_back(image.name);
-  std::ifstream tree_file(fs::path(o.output_path) / "tree.json");
+  tree_file.clear();
+  tree_file.seekg(0);
   const TmrTree tree = ReadTmrTreeJson(tree_file, names);
   DrawPartitionPicture(BuildSimilarityGraph(graph), tree,
                        (fs::path(o.output_path) / "partition.png").string());

@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "sfm/model_merging.h"
+
 namespace tmr {
 namespace {
 
@@ -48,8 +50,7 @@ std::vector<colmap::image_t> GrowBreadthFirst(
 }  // namespace
 
 std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
-    const colmap::Reconstruction& model, size_t max_images,
-    bool from_far_end) {
+    const colmap::Reconstruction& model, size_t max_images) {
   if (max_images == 0)
     throw std::invalid_argument("CovisibleImageBlocks: max_images is 0");
   std::vector<colmap::image_t> ids = model.RegImageIds();
@@ -62,7 +63,6 @@ std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
     const auto component = GrowBreadthFirst(model, id, ids.size(), &reached);
     seeds.insert(seeds.end(), component.begin(), component.end());
   }
-  if (from_far_end) std::reverse(seeds.begin(), seeds.end());
   std::vector<std::vector<colmap::image_t>> blocks;
   std::unordered_set<colmap::image_t> taken;
   for (const colmap::image_t seed : seeds) {
@@ -167,19 +167,8 @@ colmap::Reconstruction ModelOfLongestTracks(
   colmap::Reconstruction reduced;
   for (const auto& [camera_id, camera] : model.Cameras())
     reduced.AddCamera(camera);
-  std::vector<Eigen::Vector2d> xy;
   for (const colmap::image_t id : model.RegImageIds()) {
-    const colmap::Image& image = model.Image(id);
-    colmap::Image copy;
-    copy.SetImageId(id);
-    copy.SetName(image.Name());
-    copy.SetCameraId(image.CameraId());
-    copy.CamFromWorld() = image.CamFromWorld();
-    xy.clear();
-    for (const colmap::Point2D& point2D : image.Points2D())
-      xy.push_back(point2D.xy);
-    copy.SetPoints2D(xy);
-    reduced.AddImage(std::move(copy));
+    reduced.AddImage(ImageWithoutPoints(model.Image(id)));
     reduced.RegisterImage(id);
   }
   std::vector<colmap::point3D_t> ids(kept.begin(), kept.end());
@@ -224,7 +213,7 @@ std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
     for (const auto& [point_id, point] : reduced.Points3D())
       model->Point3D(point_id).xyz = point.xyz;
   }
-  const auto blocks = CovisibleImageBlocks(*model, max_block_images, false);
+  const auto blocks = CovisibleImageBlocks(*model, max_block_images);
   BlockAdjustment sum;
   int converged = 0;
   for (const auto& block : blocks) {

@@ -14,12 +14,11 @@ namespace tmr {
 
 // Cuts the registered images of `model` into blocks of at most max_images
 // that are each grown breadth-first over shared 3D points (region growing
-// on the co-visibility graph). Seeds are taken in the breadth-first order
-// of the whole model from its smallest image id, or in the reverse of that
-// order (`from_far_end`), so that the two orders put block boundaries in
-// different places. Every registered image is in exactly one block.
+// on the co-visibility graph), seeds taken in the breadth-first order of the
+// whole model from its smallest image id. Every registered image is in
+// exactly one block, and each block is connected through shared points.
 std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
-    const colmap::Reconstruction& model, size_t max_images, bool from_far_end);
+    const colmap::Reconstruction& model, size_t max_images);
 
 // One block's adjustment, as COLMAP's local bundle adjustment
 // (IncrementalMapper::AdjustLocalBundle) with the block for its window: the

@@ -194,6 +194,19 @@ ModelAlignment AlignModelsBySharedTracks(
   return result;
 }
 
+colmap::Image ImageWithoutPoints(const colmap::Image& image) {
+  colmap::Image copy;
+  copy.SetImageId(image.ImageId());
+  copy.SetName(image.Name());
+  copy.SetCameraId(image.CameraId());
+  copy.CamFromWorld() = image.CamFromWorld();
+  std::vector<Eigen::Vector2d> xy;
+  xy.reserve(image.NumPoints2D());
+  for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
+  copy.SetPoints2D(xy);
+  return copy;
+}
+
 void AppendReconstruction(const colmap::Reconstruction& source,
                           const colmap::Sim3d& target_from_source,
                           colmap::Reconstruction* target) {
@@ -217,16 +230,7 @@ void AppendReconstruction(const colmap::Reconstruction& source,
             image.Name());
       held.CamFromWorld() = image.CamFromWorld();
     } else {
-      colmap::Image copy;
-      copy.SetImageId(image_id);
-      copy.SetName(image.Name());
-      copy.SetCameraId(image.CameraId());
-      copy.CamFromWorld() = image.CamFromWorld();
-      std::vector<Eigen::Vector2d> xy;
-      xy.reserve(image.NumPoints2D());
-      for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
-      copy.SetPoints2D(xy);
-      target->AddImage(std::move(copy));
+      target->AddImage(ImageWithoutPoints(image));
     }
     target->RegisterImage(image_id);
     added.insert(image_id);

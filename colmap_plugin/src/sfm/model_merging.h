@@ -73,6 +73,10 @@ SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
                                const colmap::Sim3d& target_from_source,
                                double max_reprojection_error_px);
 
+// A copy of `image` (id, name, camera, pose, keypoints) whose keypoints
+// belong to no 3D point, to add to another model.
+colmap::Image ImageWithoutPoints(const colmap::Image& image);
+
 // Adds the registered images of `source` that `target` does not hold,
 // transformed by target_from_source, with their 3D points (observations in
 // already held images are left to RefineMergedModel to re-link).

@@ -62,10 +62,11 @@ struct TmrMapperOptions {
   // refined whenever it has grown by this factor since its last global
   // adjustment (and once more at the end).
   double merge_refine_growth = 1.5;
-  // A merged model of more registered images is bundle-adjusted by blocks
-  // of at most this many, two passes (AdjustByBlocks), so that the Ceres
-  // problem held in memory is one block's; 0 adjusts every model whole.
-  // 1,000 is where COLMAP leaves its direct sparse solver.
+  // A merged model of more registered images is bundle-adjusted in two
+  // smaller problems (AdjustByBlocks): every pose on the 500 longest tracks
+  // of each image, then blocks of at most this many images with all their
+  // points; 0 adjusts every model whole (most memory). 1,000 is where
+  // COLMAP leaves its direct sparse solver.
   int ba_max_block_images = 1000;
   // Finally let COLMAP's mapper continue every model with the images no
   // model holds yet.
