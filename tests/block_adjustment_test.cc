@@ -36,9 +36,8 @@ class BlockAdjustmentTest : public ::testing::Test {
     colmap::Database database((dir_ / "database.db").string());
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
         colmap::DatabaseCache::Create(database, 15, false, {}));
-    gt_ = new colmap::Reconstruction(
-        Matched(ReadModel((dir_ / "gt").string()),
-                *(*cache_)->CorrespondenceGraph()));
+    gt_ = new colmap::Reconstruction(Matched(
+        ReadModel((dir_ / "gt").string()), *(*cache_)->CorrespondenceGraph()));
   }
   static void TearDownTestSuite() {
     delete gt_;

@@ -101,9 +101,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
     merge.track_fit += (merge.track_fit.empty() ? "" : ", ") + fit_text;
   }
   if (merge.num_merged > 0) {
-    merge.adjustment =
-        RefineMergedModel(std::move(cache), mapper, refine, max_block_images,
-                          merge.model);
+    merge.adjustment = RefineMergedModel(std::move(cache), mapper, refine,
+                                         max_block_images, merge.model);
   }
   return merge;
 }

@@ -141,27 +141,26 @@ std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
       MergedModelSolverOptions(adjuster, options);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  return std::string(ceres::LinearSolverTypeToString(
-             solver.linear_solver_type)) +
+  return std::string(
+             ceres::LinearSolverTypeToString(solver.linear_solver_type)) +
          ": " + summary.BriefReport();
 }
 
-colmap::Reconstruction ModelOfLongestTracks(
-    const colmap::Reconstruction& model, size_t points_per_image) {
+colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
+                                            size_t points_per_image) {
   std::unordered_set<colmap::point3D_t> kept;
   std::vector<std::pair<size_t, colmap::point3D_t>> by_length;
   for (const colmap::image_t id : model.RegImageIds()) {
     by_length.clear();
     for (const colmap::Point2D& point2D : model.Image(id).Points2D()) {
       if (point2D.HasPoint3D()) {
-        by_length.emplace_back(
-            model.Point3D(point2D.point3D_id).track.Length(),
-            point2D.point3D_id);
+        by_length.emplace_back(model.Point3D(point2D.point3D_id).track.Length(),
+                               point2D.point3D_id);
       }
     }
     const size_t n = std::min(points_per_image, by_length.size());
-    std::partial_sort(by_length.begin(), by_length.begin() + n,
-                      by_length.end(), std::greater<>());
+    std::partial_sort(by_length.begin(), by_length.begin() + n, by_length.end(),
+                      std::greater<>());
     for (size_t i = 0; i < n; ++i) kept.insert(by_length[i].second);
   }
   colmap::Reconstruction reduced;

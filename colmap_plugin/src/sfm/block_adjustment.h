@@ -44,8 +44,8 @@ std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
 // The registered images of `model` with only the points that are among the
 // points_per_image longest tracks of some image (ids kept): the points
 // that tie a large model together.
-colmap::Reconstruction ModelOfLongestTracks(
-    const colmap::Reconstruction& model, size_t points_per_image);
+colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
+                                            size_t points_per_image);
 
 // Bundle adjustment of a large model in two steps whose memory is a part of
 // the whole problem's: (1) every pose and camera adjusted together on the

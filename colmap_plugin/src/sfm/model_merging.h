@@ -91,8 +91,9 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // 1,000 images and runs its global adjustments to the iteration limit; on a
 // merged 1,087-image city that took 648 s and left a median rotation error
 // of 0.039 deg against the stock mapper's 0.017. A model of more than
-// max_block_images (0: no limit) is adjusted by blocks of that many
-// (AdjustByBlocks): memory is the problem's, not the solver's (on a
+// max_block_images (0: no limit) is adjusted in two smaller problems
+// (AdjustByBlocks: every pose on the longest tracks, then blocks of at most
+// that many images), since memory is the problem's, not the solver's (on a
 // 3,749-image model both solvers held 9.7 GB). Returns the solver's name
 // and Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
@@ -101,7 +102,7 @@ std::string AdjustMergedBundle(
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment
-// (AdjustMergedBundle, by blocks above max_block_images) and point
+// (AdjustMergedBundle, in two steps above max_block_images) and point
 // filtering, as COLMAP's mapper does after registering images. Returns the
 // adjustment's report (AdjustMergedBundle).
 std::string RefineMergedModel(
