@@ -1,7 +1,8 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 //
-// Bundle adjustment of a merged model whose whole problem would not fit the
-// memory one wants to spend: the model is adjusted block by block.
+// Bundle adjustment of a merged model whose whole problem would take more
+// memory than one wants to spend: the model is adjusted on its longest
+// tracks, then block by block (AdjustByBlocks).
 #pragma once
 
 #include <colmap/estimators/bundle_adjustment.h>
