@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -47,6 +48,31 @@ std::vector<colmap::image_t> GrowBreadthFirst(
   return order;
 }
 
+// COLMAP's adjustment (residuals, loss) of `config` on `model` with a
+// direct sparse Schur solver at every size (COLMAP switches to an
+// iterative one above 1,000 images) and Ceres' convergence test (relative
+// cost change below 1e-6; COLMAP's global adjustments run to the iteration
+// limit). Nothing when the problem has no residuals.
+std::optional<ceres::Solver::Summary> Solve(
+    const colmap::BundleAdjustmentOptions& options,
+    const colmap::BundleAdjustmentConfig& config,
+    colmap::Reconstruction* model) {
+  colmap::BundleAdjuster adjuster(options, config);
+  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
+  adjuster.SetUpProblem(model, loss.get());
+  if (adjuster.Problem()->NumResiduals() == 0) return std::nullopt;
+  ceres::Solver::Options solver =
+      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
+  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
+      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
+    solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  }
+  solver.function_tolerance = 1e-6;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, adjuster.Problem().get(), &summary);
+  return summary;
+}
+
 }  // namespace
 
 std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
@@ -70,19 +96,6 @@ std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
       blocks.push_back(GrowBreadthFirst(model, seed, max_images, &taken));
   }
   return blocks;
-}
-
-ceres::Solver::Options MergedModelSolverOptions(
-    colmap::BundleAdjuster& adjuster,
-    const colmap::BundleAdjustmentOptions& options) {
-  ceres::Solver::Options solver =
-      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
-  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
-      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
-    solver.linear_solver_type = ceres::SPARSE_SCHUR;
-  }
-  solver.function_tolerance = 1e-6;
-  return solver;
 }
 
 BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
@@ -110,18 +123,12 @@ BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
     config.SetConstantCamPose(block[0]);
     if (block.size() > 1) config.SetConstantCamPositions(block[1], {0});
   }
-  colmap::BundleAdjuster adjuster(options, config);
-  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
-  adjuster.SetUpProblem(model, loss.get());
-  if (adjuster.Problem()->NumResiduals() == 0) return result;
-  const ceres::Solver::Options solver =
-      MergedModelSolverOptions(adjuster, options);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  result.num_iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.initial_cost = summary.initial_cost;
-  result.final_cost = summary.final_cost;
+  const auto summary = Solve(options, config, model);
+  if (!summary) return result;
+  result.num_iterations = static_cast<int>(summary->iterations.size()) - 1;
+  result.converged = summary->termination_type == ceres::CONVERGENCE;
+  result.initial_cost = summary->initial_cost;
+  result.final_cost = summary->final_cost;
   return result;
 }
 
@@ -133,17 +140,11 @@ std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
   for (const colmap::image_t id : images) config.AddImage(id);
   config.SetConstantCamPose(images[0]);
   config.SetConstantCamPositions(images[1], {0});
-  colmap::BundleAdjuster adjuster(options, config);
-  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
-  adjuster.SetUpProblem(model, loss.get());
-  if (adjuster.Problem()->NumResiduals() == 0) return "";
-  const ceres::Solver::Options solver =
-      MergedModelSolverOptions(adjuster, options);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  return std::string(
-             ceres::LinearSolverTypeToString(solver.linear_solver_type)) +
-         ": " + summary.BriefReport();
+  const auto summary = Solve(options, config, model);
+  if (!summary) return "";
+  return std::string(ceres::LinearSolverTypeToString(
+             summary->linear_solver_type_used)) +
+         ": " + summary->BriefReport();
 }
 
 colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,

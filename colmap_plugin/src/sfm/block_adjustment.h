@@ -37,8 +37,12 @@ BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
                             const colmap::BundleAdjustmentOptions& options,
                             colmap::Reconstruction* model);
 
-// Global bundle adjustment of every pose and camera of the model
-// (COLMAP's residuals, loss and gauge, MergedModelSolverOptions).
+// Global bundle adjustment of every pose and camera of the model with
+// COLMAP's residuals, loss and gauge, but a direct sparse Schur solver at
+// every size and Ceres' convergence test (relative cost change below 1e-6;
+// COLMAP switches to an iterative solver above 1,000 images and runs its
+// global adjustments to the iteration limit). Returns the solver's name and
+// Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
                              colmap::Reconstruction* model);
 
@@ -61,13 +65,5 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model);
-
-// Ceres options for tmr's adjustments of merged models: COLMAP's, with a
-// direct sparse Schur solver at every size (COLMAP switches to an iterative
-// one above 1,000 images) and Ceres' convergence test (relative cost change
-// below 1e-6; COLMAP's global adjustments run to the iteration limit).
-ceres::Solver::Options MergedModelSolverOptions(
-    colmap::BundleAdjuster& adjuster,
-    const colmap::BundleAdjustmentOptions& options);
 
 }  // namespace tmr

@@ -87,7 +87,7 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
 // loss and gauge (IncrementalMapper::AdjustGlobalBundle), but a direct
 // sparse Schur solver at every size and Ceres' convergence test
-// (MergedModelSolverOptions). COLMAP switches to an iterative solver above
+// (AdjustWholeModel). COLMAP switches to an iterative solver above
 // 1,000 images and runs its global adjustments to the iteration limit; on a
 // merged 1,087-image city that took 648 s and left a median rotation error
 // of 0.039 deg against the stock mapper's 0.017. A model of more than
