@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -20,7 +21,18 @@ int main(int argc, char** argv) {
     std::cerr << "usage: bench_adjustment DATABASE MODEL [MAX_BLOCK_IMAGES]\n";
     return 2;
   }
-  const size_t max_block_images = argc == 4 ? std::stoul(argv[3]) : 0;
+  size_t max_block_images = 0;
+  if (argc == 4) {
+    char* end = nullptr;
+    const long long value = std::strtoll(argv[3], &end, 10);
+    if (*argv[3] == '\0' || *end != '\0' || value < 0) {
+      std::cerr << "bench_adjustment: error: MAX_BLOCK_IMAGES must be a "
+                   "number >= 0, not '"
+                << argv[3] << "'\n";
+      return 2;
+    }
+    max_block_images = static_cast<size_t>(value);
+  }
   auto model = std::make_shared<colmap::Reconstruction>();
   try {
     model->Read(argv[2]);
