@@ -222,10 +222,11 @@ TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
   bad.WriteBinary(work / "bad");
   Keep(place).WriteBinary(work / "good");
 
+  MergedModelAdjustment no_adjustment;
+  no_adjustment.enabled = false;
   const ClusterMerge merge =
       MergeLeafModels(work / "kernel", {work / "bad", work / "good"}, *cache_,
-                      colmap::IncrementalMapperOptions(), 12, /*refine=*/false,
-                      /*max_block_images=*/0);
+                      colmap::IncrementalMapperOptions(), 12, no_adjustment);
   EXPECT_EQ(merge.num_merged, 1);
   ASSERT_EQ(merge.left_out.size(), 1u);
   EXPECT_EQ(merge.left_out[0].leaf, 0);

@@ -61,6 +61,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "global bundle adjustment after merges");
   add("Tmr.merge_refine_growth", &o->merge_refine_growth,
       "refine a scene whenever merges grew it by this factor");
+  add("Tmr.merge_refine_points_per_image", &o->merge_refine_points_per_image,
+      "those refinements on this many longest tracks per image (0: all)");
   add("Tmr.ba_max_block_images", &o->ba_max_block_images,
       "adjust larger merged models by blocks of this many (0: whole)");
   add("Tmr.complete_models", &o->complete_models,

@@ -62,8 +62,10 @@ int main(int argc, char** argv) {
   colmap::IncrementalMapperOptions options;
   options.num_threads = 2;
   const auto start = std::chrono::steady_clock::now();
+  tmr::MergedModelAdjustment adjustment;
+  adjustment.max_block_images = max_block_images;
   const std::string report =
-      tmr::RefineMergedModel(cache, options, true, max_block_images, model);
+      tmr::RefineMergedModel(cache, options, adjustment, model);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

@@ -64,8 +64,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
                              const colmap::IncrementalMapperOptions& mapper,
-                             int min_shared_tracks, bool refine,
-                             size_t max_block_images) {
+                             int min_shared_tracks,
+                             const MergedModelAdjustment& adjustment) {
   // COLMAP's thresholds for its own reprojection-verified alignment
   // (MergeReconstructions); the shared tracks are held to the same 8 px.
   constexpr double kMaxReprojErrorPx = 8.0;
@@ -101,8 +101,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
     merge.track_fit += (merge.track_fit.empty() ? "" : ", ") + fit_text;
   }
   if (merge.num_merged > 0) {
-    merge.adjustment = RefineMergedModel(std::move(cache), mapper, refine,
-                                         max_block_images, merge.model);
+    merge.adjustment =
+        RefineMergedModel(std::move(cache), mapper, adjustment, merge.model);
   }
   return merge;
 }
@@ -203,7 +203,7 @@ SceneAssembler::MergeScenes(
           refined_size_.erase(model.get());
           if (scene->NumRegImages() >=
               o_.merge_refine_growth * refined_size_[scene.get()])
-            Refine(scene);
+            Refine(scene, /*while_merging=*/true);
           joined = merged = true;
           break;
         }
@@ -285,21 +285,24 @@ void SceneAssembler::CompleteScenes(
 void SceneAssembler::RefineMergedScenes(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
   for (const auto& scene : scenes) {
-    if (unrefined_.count(scene.get())) Refine(scene);
+    if (unrefined_.count(scene.get())) Refine(scene, /*while_merging=*/false);
   }
 }
 
 void SceneAssembler::Refine(
-    const std::shared_ptr<colmap::Reconstruction>& scene) const {
+    const std::shared_ptr<colmap::Reconstruction>& scene,
+    bool while_merging) const {
   const auto start = Clock::now();
-  const std::string adjustment =
-      RefineMergedModel(cache_, ColmapOptions(o_.mapper, num_threads_),
-                        o_.refine_merged_models, o_.ba_max_block_images, scene);
+  const MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
+  const std::string report = RefineMergedModel(
+      cache_, ColmapOptions(o_.mapper, num_threads_), adjustment, scene);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->NumRegImages());
-  record_({"refine merged model", images, images, SecondsSince(start), true,
-           "tracks merged, global bundle adjustment: " + adjustment});
-  unrefined_.erase(scene.get());
+  const bool full = adjustment.longest_tracks_per_image == 0;
+  record_({full ? "refine merged model" : "refine growing scene", images,
+           images, SecondsSince(start), true,
+           "tracks merged, global bundle adjustment: " + report});
+  if (full) unrefined_.erase(scene.get());
   refined_size_[scene.get()] = scene->NumRegImages();
 }
 

@@ -12,6 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "sfm/model_merging.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
@@ -55,8 +56,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
                              const colmap::IncrementalMapperOptions& mapper,
-                             int min_shared_tracks, bool refine,
-                             size_t max_block_images);
+                             int min_shared_tracks,
+                             const MergedModelAdjustment& adjustment);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
@@ -117,10 +118,13 @@ class SceneAssembler {
   std::vector<std::string> image_names_;
   int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
-  // Re-links tracks, global adjustment and filtering (RefineMergedModel).
-  void Refine(const std::shared_ptr<colmap::Reconstruction>& scene) const;
+  // Re-links tracks, global adjustment and filtering (RefineMergedModel):
+  // the full adjustment, or while merging the one that the options ask for
+  // then (MergedAdjustment).
+  void Refine(const std::shared_ptr<colmap::Reconstruction>& scene,
+              bool while_merging) const;
 
-  // Scenes merged or completed since their last global adjustment.
+  // Scenes merged or completed since their last full global adjustment.
   mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
   // Registered images of each scene at its last global adjustment.
   mutable std::unordered_map<const colmap::Reconstruction*, size_t>

@@ -284,11 +284,10 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
       leaf_models.push_back(work_.LeafModel(k, l));
     }
   }
-  const ClusterMerge merge =
-      MergeLeafModels(work_.KernelModel(k), leaf_models, std::move(cache),
-                      ColmapOptions(o_.mapper, num_threads),
-                      o_.merge_min_shared_tracks, o_.refine_merged_models,
-                      o_.ba_max_block_images);
+  const ClusterMerge merge = MergeLeafModels(
+      work_.KernelModel(k), leaf_models, std::move(cache),
+      ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
+      MergedAdjustment(o_, /*while_merging=*/false));
   ReleaseFreedMemory();
   for (const auto& [i, reason] : merge.left_out) {
     notes->push_back("leaf " + std::to_string(k) + "." +

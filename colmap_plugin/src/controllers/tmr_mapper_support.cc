@@ -68,6 +68,16 @@ std::string ReadFileToString(const std::string& path) {
   return in ? content.str() : std::string();
 }
 
+MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
+                                       bool while_merging) {
+  MergedModelAdjustment adjustment;
+  adjustment.enabled = options.refine_merged_models;
+  adjustment.max_block_images = options.ba_max_block_images;
+  if (while_merging)
+    adjustment.longest_tracks_per_image = options.merge_refine_points_per_image;
+  return adjustment;
+}
+
 void ReleaseFreedMemory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
@@ -121,6 +131,8 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("Tmr.merge_refine_growth must be >= 1");
   if (ba_max_block_images < 0)
     return fail("Tmr.ba_max_block_images must be >= 0");
+  if (merge_refine_points_per_image < 0)
+    return fail("Tmr.merge_refine_points_per_image must be >= 0");
   if (mapper.min_num_matches < 1)
     return fail("Mapper.min_num_matches must be >= 1");
   if (mapper.min_model_size < 1)

@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 
+#include "sfm/model_merging.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
@@ -16,6 +17,13 @@ namespace tmr {
 // COLMAP's mapper options with tmr_mapper's pass-through values.
 colmap::IncrementalMapperOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads);
+
+// The bundle adjustment of a merged model that the options ask for: the
+// full one (an image-cluster model, a scene's last refinement), or, for the
+// refinements while scenes grow, on the longest tracks only
+// (merge_refine_points_per_image).
+MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
+                                       bool while_merging);
 
 // Hands memory that was freed back to the system (glibc keeps freed memory
 // in per-thread arenas: an adjustment run on another worker thread than the

@@ -183,6 +183,32 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
   return reduced;
 }
 
+std::string AdjustOnLongestTracks(
+    const colmap::BundleAdjustmentOptions& options, size_t points_per_image,
+    colmap::Reconstruction* model) {
+  colmap::Reconstruction reduced =
+      ModelOfLongestTracks(*model, points_per_image);
+  std::ostringstream report;
+  report << "global on " << reduced.NumPoints3D() << " of "
+         << model->NumPoints3D() << " points ("
+         << AdjustWholeModel(options, &reduced) << ")";
+  // A point left out moves with the first image that observes it.
+  for (const auto& [point_id, point] : model->Points3D()) {
+    if (reduced.ExistsPoint3D(point_id)) continue;
+    const colmap::image_t id = point.track.Element(0).image_id;
+    model->Point3D(point_id).xyz =
+        colmap::Inverse(reduced.Image(id).CamFromWorld()) *
+        (model->Image(id).CamFromWorld() * point.xyz);
+  }
+  for (const colmap::image_t id : reduced.RegImageIds())
+    model->Image(id).CamFromWorld() = reduced.Image(id).CamFromWorld();
+  for (const auto& [camera_id, camera] : reduced.Cameras())
+    model->Camera(camera_id).params = camera.params;
+  for (const auto& [point_id, point] : reduced.Points3D())
+    model->Point3D(point_id).xyz = point.xyz;
+  return report.str();
+}
+
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model) {
@@ -192,27 +218,7 @@ std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
   // ~65% of the observations in step 1): 0.0215 / 0.0175 / 0.0160 deg.
   constexpr size_t kGlobalPointsPerImage = 500;
   std::ostringstream report;
-  {
-    colmap::Reconstruction reduced =
-        ModelOfLongestTracks(*model, kGlobalPointsPerImage);
-    report << "global on " << reduced.NumPoints3D() << " of "
-           << model->NumPoints3D() << " points ("
-           << AdjustWholeModel(options, &reduced) << ")";
-    // A point left out moves with the first image that observes it.
-    for (const auto& [point_id, point] : model->Points3D()) {
-      if (reduced.ExistsPoint3D(point_id)) continue;
-      const colmap::image_t id = point.track.Element(0).image_id;
-      model->Point3D(point_id).xyz =
-          colmap::Inverse(reduced.Image(id).CamFromWorld()) *
-          (model->Image(id).CamFromWorld() * point.xyz);
-    }
-    for (const colmap::image_t id : reduced.RegImageIds())
-      model->Image(id).CamFromWorld() = reduced.Image(id).CamFromWorld();
-    for (const auto& [camera_id, camera] : reduced.Cameras())
-      model->Camera(camera_id).params = camera.params;
-    for (const auto& [point_id, point] : reduced.Points3D())
-      model->Point3D(point_id).xyz = point.xyz;
-  }
+  report << AdjustOnLongestTracks(options, kGlobalPointsPerImage, model);
   const auto blocks = CovisibleImageBlocks(*model, max_block_images);
   BlockAdjustment sum;
   int converged = 0;

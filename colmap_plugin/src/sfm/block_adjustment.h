@@ -52,9 +52,18 @@ std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
 colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
                                             size_t points_per_image);
 
+// Global bundle adjustment of every pose and camera on the model's
+// points_per_image longest tracks per image only (ModelOfLongestTracks,
+// AdjustWholeModel); a point left out moves with the first image that
+// observes it. It fixes the large-scale shape at a part of the whole
+// problem's cost, not the fine detail. Returns a one-line report.
+std::string AdjustOnLongestTracks(
+    const colmap::BundleAdjustmentOptions& options, size_t points_per_image,
+    colmap::Reconstruction* model);
+
 // Bundle adjustment of a large model in two steps whose memory is a part of
 // the whole problem's: (1) every pose and camera adjusted together on the
-// 500 longest tracks of each image (ModelOfLongestTracks, AdjustWholeModel),
+// 500 longest tracks of each image (AdjustOnLongestTracks),
 // which closes the model's loops and fixes its large-scale shape; (2) one
 // pass over blocks of at most max_block_images (CovisibleImageBlocks), each
 // adjusted with all its points (AdjustBlock), which fits the points left

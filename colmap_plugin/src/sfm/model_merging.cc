@@ -246,22 +246,28 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 
 std::string AdjustMergedBundle(
     const colmap::IncrementalMapperOptions& mapper_options,
-    size_t max_block_images, colmap::IncrementalMapper* mapper) {
+    const MergedModelAdjustment& adjustment,
+    colmap::IncrementalMapper* mapper) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
-  const std::vector<colmap::image_t>& images = model.RegImageIds();
-  if (images.size() < 2) return "";
+  const size_t num_images = model.NumRegImages();
+  if (num_images < 2) return "";
   mapper->ObservationManager().FilterObservationsWithNegativeDepth();
   const colmap::BundleAdjustmentOptions options =
       mapper_options.GlobalBundleAdjustment();
-  if (max_block_images > 0 && images.size() > max_block_images)
-    return AdjustByBlocks(options, max_block_images, &model);
+  if (adjustment.longest_tracks_per_image > 0) {
+    return AdjustOnLongestTracks(options, adjustment.longest_tracks_per_image,
+                                 &model);
+  }
+  if (adjustment.max_block_images > 0 &&
+      num_images > adjustment.max_block_images)
+    return AdjustByBlocks(options, adjustment.max_block_images, &model);
   return AdjustWholeModel(options, &model);
 }
 
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool global_bundle_adjustment, size_t max_block_images,
+    const MergedModelAdjustment& adjustment,
     const std::shared_ptr<colmap::Reconstruction>& model) {
   colmap::IncrementalMapper mapper(database_cache);
   mapper.BeginReconstruction(model);
@@ -269,9 +275,16 @@ std::string RefineMergedModel(
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
   std::string report;
-  if (global_bundle_adjustment)
-    report = AdjustMergedBundle(mapper_options, max_block_images, &mapper);
-  mapper.FilterPoints(mapper_options.Mapper());
+  if (adjustment.enabled)
+    report = AdjustMergedBundle(mapper_options, adjustment, &mapper);
+  // Points left out of an adjustment on the longest tracks were moved, not
+  // fitted: filtering them then would delete what the next full adjustment
+  // fits (on a city with a misaligned half, 8% of the points instead of 2%).
+  if (!adjustment.enabled || adjustment.longest_tracks_per_image == 0) {
+    report += "; " +
+              std::to_string(mapper.FilterPoints(mapper_options.Mapper())) +
+              " points filtered";
+  }
   mapper.EndReconstruction(/*discard=*/false);
   return report;
 }

@@ -84,6 +84,21 @@ void AppendReconstruction(const colmap::Reconstruction& source,
                           const colmap::Sim3d& target_from_source,
                           colmap::Reconstruction* target);
 
+// How RefineMergedModel bundle-adjusts a merged model.
+struct MergedModelAdjustment {
+  // Global bundle adjustment at all (false: tracks re-linked and points
+  // filtered only).
+  bool enabled = true;
+  // A model of more registered images is adjusted in two smaller problems
+  // (AdjustByBlocks); 0: every model whole.
+  size_t max_block_images = 1000;
+  // > 0: every pose adjusted on only this many longest tracks per image
+  // (AdjustOnLongestTracks), at any size: enough for the large-scale shape
+  // that later merges are tested against, at a part of the cost. 0: the
+  // full adjustment above.
+  size_t longest_tracks_per_image = 0;
+};
+
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
 // loss and gauge (IncrementalMapper::AdjustGlobalBundle), but a direct
 // sparse Schur solver at every size and Ceres' convergence test
@@ -91,24 +106,25 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 // 1,000 images and runs its global adjustments to the iteration limit; on a
 // merged 1,087-image city that took 648 s and left a median rotation error
 // of 0.039 deg against the stock mapper's 0.017. A model of more than
-// max_block_images (0: no limit) is adjusted in two smaller problems
+// adjustment.max_block_images is adjusted in two smaller problems
 // (AdjustByBlocks: every pose on the longest tracks, then blocks of at most
 // that many images), since memory is the problem's, not the solver's (on a
 // 3,749-image model both solvers held 9.7 GB). Returns the solver's name
 // and Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
     const colmap::IncrementalMapperOptions& mapper_options,
-    size_t max_block_images, colmap::IncrementalMapper* mapper);
+    const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment
-// (AdjustMergedBundle, in two steps above max_block_images) and point
-// filtering, as COLMAP's mapper does after registering images. Returns the
-// adjustment's report (AdjustMergedBundle).
+// (AdjustMergedBundle) and point filtering (not after an adjustment on the
+// longest tracks, which moves the other points without fitting them), as
+// COLMAP's mapper does after registering images. Returns the adjustment's
+// report (AdjustMergedBundle) and the number of points filtered.
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
-    bool global_bundle_adjustment, size_t max_block_images,
+    const MergedModelAdjustment& adjustment,
     const std::shared_ptr<colmap::Reconstruction>& model);
 
 }  // namespace tmr

@@ -62,7 +62,13 @@ struct TmrMapperOptions {
   // refined whenever it has grown by this factor since its last global
   // adjustment (and once more at the end).
   double merge_refine_growth = 1.5;
-  // A merged model of more registered images is bundle-adjusted in two
+  // Those refinements while scenes grow adjust every pose on only this many
+  // longest tracks per image (AdjustOnLongestTracks): the large-scale shape
+  // that the next merges are tested against, at a part of the cost; each
+  // scene gets its full adjustment once, at the end. 0: every refinement
+  // full.
+  int merge_refine_points_per_image = 500;
+  // A merged model of more registered images is fully bundle-adjusted in two
   // smaller problems (AdjustByBlocks): every pose on the 500 longest tracks
   // of each image, then blocks of at most this many images with all their
   // points; 0 adjusts every model whole (most memory). 1,000 is where
