@@ -59,6 +59,28 @@ void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
   if (!o.keep_work) fs::remove_all(stages.work().folder());
 }
 
+// Kernel k's cluster merge (TmrMapperStages::MergeCluster) as a task of the
+// graph: it runs once `depends` have finished, if *cache then holds the
+// correspondences; its notes go to `progress`, its row to `record` (when
+// it gave a model), its model to *cluster. The callbacks are called from
+// worker threads.
+TaskGraph::Task ClusterMergeTask(
+    const TmrMapperStages& stages, int k, std::vector<int> depends,
+    const std::shared_ptr<const colmap::DatabaseCache>* cache,
+    const std::function<void(const std::string&)>& progress,
+    const std::function<void(const TmrTaskReport&)>& record,
+    std::shared_ptr<colmap::Reconstruction>* cluster) {
+  return {"merge", 0.1 * stages.tree().kernels[k].cluster_images.size(),
+          std::move(depends), [=, &stages](int threads) {
+            if (!*cache) return;
+            TmrTaskReport row;
+            std::vector<std::string> notes;
+            *cluster = stages.MergeCluster(k, *cache, threads, &row, &notes);
+            for (const std::string& note : notes) progress(note);
+            if (*cluster) record(row);
+          }};
+}
+
 // The in-process run: the stages of TmrMapperStages on one task graph,
 // with progress lines and an ETA.
 class TmrMapperRun {
@@ -163,16 +185,10 @@ class TmrMapperRun {
       merge_depends[task.kernel].push_back(id);
     }
     for (int k = 0; k < static_cast<int>(tree.kernels.size()); ++k) {
-      graph.Add({"merge", 0.1 * tree.kernels[k].cluster_images.size(),
-                 merge_depends[k], [this, k](int threads) {
-                   if (!cache_) return;
-                   TmrTaskReport row;
-                   std::vector<std::string> notes;
-                   clusters_[k] =
-                       stages_.MergeCluster(k, cache_, threads, &row, &notes);
-                   for (const std::string& note : notes) Progress(note);
-                   if (clusters_[k]) Record(row);
-                 }});
+      graph.Add(ClusterMergeTask(
+          stages_, k, merge_depends[k], &cache_,
+          [this](const std::string& note) { Progress(note); },
+          [this](const TmrTaskReport& row) { Record(row); }, &clusters_[k]));
     }
     graph_start_ = Clock::now();
     graph.Run(threads_);
@@ -269,32 +285,24 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
   }
   const auto cache = stages.LoadCache(error);
   if (!cache) return false;
+  std::mutex mutex;
+  auto note = [&](const std::string& line) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (progress) progress(line);
+  };
   auto record = [&](const TmrTaskReport& row) {
+    std::lock_guard<std::mutex> lock(mutex);
     report->tasks.push_back(row);
     if (progress) progress(row.name + ": " + row.message);
   };
   // Cluster merges on the task graph, as in the one-command run.
   const int threads = NumThreads(effective);
-  const int num_kernels = static_cast<int>(stages.tree().kernels.size());
-  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters(num_kernels);
-  std::mutex mutex;
+  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters(
+      stages.tree().kernels.size());
   TaskGraph graph;
-  for (int k = 0; k < num_kernels; ++k) {
-    graph.Add({"merge",
-               0.1 * stages.tree().kernels[k].cluster_images.size(),
-               {},
-               [&, k](int num_threads) {
-                 TmrTaskReport row;
-                 std::vector<std::string> notes;
-                 auto cluster =
-                     stages.MergeCluster(k, cache, num_threads, &row, &notes);
-                 std::lock_guard<std::mutex> lock(mutex);
-                 for (const std::string& note : notes)
-                   if (progress) progress(note);
-                 if (cluster) record(row);
-                 clusters[k] = std::move(cluster);
-               }});
-  }
+  for (int k = 0; k < static_cast<int>(clusters.size()); ++k)
+    graph.Add(
+        ClusterMergeTask(stages, k, {}, &cache, note, record, &clusters[k]));
   graph.Run(threads);
   clusters.erase(std::remove(clusters.begin(), clusters.end(), nullptr),
                  clusters.end());

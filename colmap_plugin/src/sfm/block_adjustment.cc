@@ -1,8 +1,11 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/block_adjustment.h"
 
+#include <colmap/geometry/triangulation.h>
+
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -14,6 +17,47 @@
 
 namespace tmr {
 namespace {
+
+// Sum of the squared reprojection errors (px^2) of `xyz` over its track;
+// infinite when it lies behind a camera.
+double SquaredReprojectionError(const colmap::Reconstruction& model,
+                                const colmap::Track& track,
+                                const Eigen::Vector3d& xyz) {
+  double sum = 0;
+  for (const colmap::TrackElement& element : track.Elements()) {
+    const colmap::Image& image = model.Image(element.image_id);
+    const Eigen::Vector3d in_camera = image.CamFromWorld() * xyz;
+    if (in_camera.z() < std::numeric_limits<double>::epsilon())
+      return std::numeric_limits<double>::infinity();
+    sum += (model.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized()) -
+            image.Point2D(element.point2D_idx).xy)
+               .squaredNorm();
+  }
+  return sum;
+}
+
+// Triangulates the point again from its track with the model's poses
+// (COLMAP's multi-view DLT on normalized coordinates) where that fits its
+// observations better than its current position.
+void RetriangulateIfBetter(colmap::Reconstruction* model,
+                           colmap::point3D_t point_id) {
+  colmap::Point3D& point = model->Point3D(point_id);
+  std::vector<Eigen::Matrix3x4d> cams_from_world;
+  std::vector<Eigen::Vector2d> normalized;
+  for (const colmap::TrackElement& element : point.track.Elements()) {
+    const colmap::Image& image = model->Image(element.image_id);
+    cams_from_world.push_back(image.CamFromWorld().ToMatrix());
+    normalized.push_back(
+        model->Camera(image.CameraId())
+            .CamFromImg(image.Point2D(element.point2D_idx).xy));
+  }
+  const Eigen::Vector3d xyz =
+      colmap::TriangulateMultiViewPoint(cams_from_world, normalized);
+  if (xyz.allFinite() &&
+      SquaredReprojectionError(*model, point.track, xyz) <
+          SquaredReprojectionError(*model, point.track, point.xyz))
+    point.xyz = xyz;
+}
 
 // Calls visit(other) for every registered image that shares a 3D point with
 // `image_id` (once per shared observation).
@@ -192,9 +236,12 @@ std::string AdjustOnLongestTracks(
   report << "global on " << reduced.NumPoints3D() << " of "
          << model->NumPoints3D() << " points ("
          << AdjustWholeModel(options, &reduced) << ")";
-  // A point left out moves with the first image that observes it.
+  // A point left out moves with the first image that observes it, then is
+  // triangulated again with the adjusted poses where that fits better.
+  std::vector<colmap::point3D_t> left_out;
   for (const auto& [point_id, point] : model->Points3D()) {
     if (reduced.ExistsPoint3D(point_id)) continue;
+    left_out.push_back(point_id);
     const colmap::image_t id = point.track.Element(0).image_id;
     model->Point3D(point_id).xyz =
         colmap::Inverse(reduced.Image(id).CamFromWorld()) *
@@ -206,6 +253,8 @@ std::string AdjustOnLongestTracks(
     model->Camera(camera_id).params = camera.params;
   for (const auto& [point_id, point] : reduced.Points3D())
     model->Point3D(point_id).xyz = point.xyz;
+  for (const colmap::point3D_t point_id : left_out)
+    RetriangulateIfBetter(model, point_id);
   return report.str();
 }
 

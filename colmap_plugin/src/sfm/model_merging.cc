@@ -276,17 +276,10 @@ std::string RefineMergedModel(
   mapper.Retriangulate(triangulation);
   std::string report;
   if (adjustment.enabled)
-    report = AdjustMergedBundle(mapper_options, adjustment, &mapper);
-  // Points left out of an adjustment on the longest tracks were moved, not
-  // fitted: filtering them then would delete what the next full adjustment
-  // fits (on a city with a misaligned half, 8% of the points instead of 2%).
-  if (!adjustment.enabled || adjustment.longest_tracks_per_image == 0) {
-    report += "; " +
-              std::to_string(mapper.FilterPoints(mapper_options.Mapper())) +
-              " points filtered";
-  }
+    report = AdjustMergedBundle(mapper_options, adjustment, &mapper) + "; ";
+  const size_t filtered = mapper.FilterPoints(mapper_options.Mapper());
   mapper.EndReconstruction(/*discard=*/false);
-  return report;
+  return report + std::to_string(filtered) + " points filtered";
 }
 
 }  // namespace tmr

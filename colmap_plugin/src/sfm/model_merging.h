@@ -117,10 +117,9 @@ std::string AdjustMergedBundle(
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph), then global bundle adjustment
-// (AdjustMergedBundle) and point filtering (not after an adjustment on the
-// longest tracks, which moves the other points without fitting them), as
-// COLMAP's mapper does after registering images. Returns the adjustment's
-// report (AdjustMergedBundle) and the number of points filtered.
+// (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
+// registering images. Returns the adjustment's report (AdjustMergedBundle)
+// and the number of points filtered.
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
