@@ -7,8 +7,8 @@
 #
 # Usage: tools/bench/bench_mapper.sh [SCENE ...]
 #   SCENE: city1 city2 city3 city4 city6 (well-connected, 192 / 552 / 1,088 /
-#          1,800 / 3,752 images) or places4 places8 places16 (weakly linked
-#          places, 120 images each). Default: city1 places4.
+#          1,800 / 3,752 images) or placesN, e.g. places8 places32 (weakly linked
+#          places of about 75 images each). Default: city1 places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
 # tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
