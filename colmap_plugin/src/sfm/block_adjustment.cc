@@ -2,6 +2,7 @@
 #include "sfm/block_adjustment.h"
 
 #include <colmap/geometry/triangulation.h>
+#include <colmap/scene/projection.h>
 
 #include <algorithm>
 #include <functional>
@@ -26,12 +27,13 @@ double SquaredReprojectionError(const colmap::Reconstruction& model,
   double sum = 0;
   for (const colmap::TrackElement& element : track.Elements()) {
     const colmap::Image& image = model.Image(element.image_id);
-    const Eigen::Vector3d in_camera = image.CamFromWorld() * xyz;
-    if (in_camera.z() < std::numeric_limits<double>::epsilon())
+    // COLMAP's value for a point behind the camera is the largest double.
+    const double error = colmap::CalculateSquaredReprojectionError(
+        image.Point2D(element.point2D_idx).xy, xyz, image.CamFromWorld(),
+        model.Camera(image.CameraId()));
+    if (error == std::numeric_limits<double>::max())
       return std::numeric_limits<double>::infinity();
-    sum += (model.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized()) -
-            image.Point2D(element.point2D_idx).xy)
-               .squaredNorm();
+    sum += error;
   }
   return sum;
 }

@@ -58,7 +58,7 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
 // observes it, then is triangulated again with the adjusted poses where
 // that fits its observations better (on a city with a misaligned half, the
 // rigid move alone left 8% of the points to be filtered, against 2% after
-// the whole adjustment; with the new triangulation 2%). It fixes the
+// the whole adjustment; triangulated again, 2%). It fixes the
 // large-scale shape at a part of the whole problem's cost, not the fine detail.
 // Returns a one-line report.
 std::string AdjustOnLongestTracks(
