@@ -1,36 +1,18 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "partition_picture.h"
 
-#include <boost/graph/adjacency_list.hpp>
-#include <boost/graph/fruchterman_reingold.hpp>
-#include <boost/graph/random_layout.hpp>
-#include <boost/graph/topology.hpp>
-#include <boost/random/mersenne_twister.hpp>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "force_layout.h"
+
 namespace tmr {
 namespace {
-
-using Topology = boost::square_topology<boost::mt19937>;
-using Point = Topology::point_type;
-using Graph =
-    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
-                          boost::property<boost::vertex_index_t, int>>;
-
-std::vector<Point> Layout(const ImageGraph& s, double extent) {
-  Graph g(s.NumVertices());
-  for (const WeightedEdge& e : s.Edges()) boost::add_edge(e.u, e.v, g);
-  boost::mt19937 rng(7);
-  Topology topology(rng, extent);
-  std::vector<Point> position(s.NumVertices());
-  auto map = boost::make_iterator_property_map(
-      position.begin(), boost::get(boost::vertex_index, g));
-  boost::random_graph_layout(g, map, topology);
-  boost::fruchterman_reingold_force_directed_layout(
-      g, map, topology, boost::cooling(boost::linear_cooling<double>(400)));
-  return position;
-}
 
 cv::Scalar Colour(int cluster, int leaf, int num_leaves) {
   const int hue = (cluster * 47) % 180;  // OpenCV hue range
@@ -48,10 +30,10 @@ bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,
                           const std::string& png_path, int size_px) {
   const int n = similarity.NumVertices();
   if (n == 0) return false;
-  const std::vector<Point> layout =
-      Layout(similarity, 100.0 * std::sqrt(double(n)));
+  const std::vector<std::array<double, 2>> layout =
+      ForceDirectedLayout(n, similarity.Edges());
   double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
-  for (const Point& p : layout) {
+  for (const std::array<double, 2>& p : layout) {
     min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
     min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
   }

@@ -9,8 +9,8 @@
 
 namespace tmr {
 
-// Draws the image graph with a force-directed layout (Fruchterman-Reingold,
-// Boost.Graph, seeded): images coloured by leaf cluster (one hue per image
+// Draws the image graph with a force-directed layout (ForceDirectedLayout,
+// seeded): images coloured by leaf cluster (one hue per image
 // cluster), kernel images outlined in black, exemplars as large squares,
 // unclustered images as grey crosses. Writes a PNG; false on failure.
 bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,

@@ -136,7 +136,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   if (scenes.size() > 1) {
     const size_t before = scenes.size();
     scenes = MergeScenes(scenes);
-    if (scenes.size() < before) RefineMergedScenes(scenes);
+    if (scenes.size() < before) RefineLateMerges(scenes);
   }
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
@@ -286,6 +286,16 @@ void SceneAssembler::RefineMergedScenes(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
   for (const auto& scene : scenes) {
     if (unrefined_.count(scene.get())) Refine(scene, /*while_merging=*/false);
+  }
+}
+
+void SceneAssembler::RefineLateMerges(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  for (const auto& scene : scenes) {
+    if (!unrefined_.count(scene.get())) continue;
+    const bool small = scene->NumRegImages() <
+                       kFullAdjustmentGrowth * refined_size_[scene.get()];
+    Refine(scene, /*while_merging=*/small);
   }
 }
 
