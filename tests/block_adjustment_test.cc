@@ -3,13 +3,14 @@
 // blocks whose second half was placed slightly off, its tracks split at the
 // seam, as a scene merge leaves it: re-linked and adjusted by blocks of a
 // third of the images, the poses come back as well as with the whole model
-// adjusted.
+// adjusted. A small part that joins late is adjusted alone.
 #include <colmap/scene/database.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <unordered_set>
@@ -165,6 +166,51 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
   // merges that follow are tested against.
   EXPECT_LT(after[2].rotation_error_deg.median,
             0.5 * before.rotation_error_deg.median);
+}
+
+// A small part that joined a model adjusted before (a late scene merge):
+// only its images and points are adjusted; every other pose stays as it
+// was, and the part comes back onto the model.
+TEST_F(BlockAdjustmentTest, ALateJoinAdjustsOnlyTheImagesThatJoined) {
+  auto model = std::make_shared<colmap::Reconstruction>(*gt_);
+  std::vector<colmap::image_t> ids = model->RegImageIds();
+  std::sort(ids.begin(), ids.end());
+  const std::vector<colmap::image_t> joined(ids.end() - ids.size() / 10,
+                                            ids.end());
+  const std::unordered_set<colmap::image_t> group(joined.begin(), joined.end());
+  MoveGroupApart(group,
+                 colmap::Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(
+                                     0.003, Eigen::Vector3d::UnitY())),
+                                 Eigen::Vector3d(0.02, -0.01, 0.015)),
+                 model.get());
+  auto rotation_error_deg = [&](colmap::image_t id) {
+    return gt_->Image(id).CamFromWorld().rotation.angularDistance(
+               model->Image(id).CamFromWorld().rotation) *
+           180.0 / M_PI;
+  };
+  double before = 0;
+  for (const colmap::image_t id : joined) before += rotation_error_deg(id);
+  MergedModelAdjustment adjustment;
+  adjustment.only_images = joined;
+  const std::string report = RefineMergedModel(
+      *cache_, colmap::IncrementalMapperOptions(), adjustment, model);
+  EXPECT_NE(report.find("block of " + std::to_string(joined.size())),
+            std::string::npos)
+      << report;
+  double after = 0;
+  for (const colmap::image_t id : joined) after += rotation_error_deg(id);
+  std::cout << report << ": mean rotation error of the part "
+            << before / joined.size() << " -> " << after / joined.size()
+            << " deg\n";
+  EXPECT_LT(after, 0.25 * before);
+  for (const colmap::image_t id : ids) {
+    if (group.count(id)) continue;
+    const colmap::Rigid3d& pose = model->Image(id).CamFromWorld();
+    const colmap::Rigid3d& truth = gt_->Image(id).CamFromWorld();
+    // Held: unchanged but for the rotation's normalisation.
+    EXPECT_LT(pose.rotation.angularDistance(truth.rotation), 1e-12) << id;
+    EXPECT_LT((pose.translation - truth.translation).norm(), 1e-12) << id;
+  }
 }
 
 }  // namespace

@@ -134,9 +134,16 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   // (tmr_synth city of 3,752: two clusters of 234 and 222 photos fitted 31%
   // and 41% of their shared tracks, below half of the anchor image's rate).
   if (scenes.size() > 1) {
+    std::unordered_map<const colmap::Reconstruction*,
+                       std::unordered_set<colmap::image_t>>
+        held;
+    for (const auto& scene : scenes) {
+      const std::vector<colmap::image_t>& ids = scene->RegImageIds();
+      held[scene.get()].insert(ids.begin(), ids.end());
+    }
     const size_t before = scenes.size();
     scenes = MergeScenes(scenes);
-    if (scenes.size() < before) RefineLateMerges(scenes);
+    if (scenes.size() < before) RefineLateMerges(scenes, held);
   }
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
@@ -290,27 +297,37 @@ void SceneAssembler::RefineMergedScenes(
 }
 
 void SceneAssembler::RefineLateMerges(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
+    const std::unordered_map<const colmap::Reconstruction*,
+                             std::unordered_set<colmap::image_t>>& held) const {
   for (const auto& scene : scenes) {
     if (!unrefined_.count(scene.get())) continue;
-    const bool small = scene->NumRegImages() <
-                       kFullAdjustmentGrowth * refined_size_[scene.get()];
-    Refine(scene, /*while_merging=*/small);
+    const std::unordered_set<colmap::image_t>& before = held.at(scene.get());
+    std::vector<colmap::image_t> joined;
+    for (const colmap::image_t id : scene->RegImageIds())
+      if (!before.count(id)) joined.push_back(id);
+    if (scene->NumRegImages() >= kFullAdjustmentGrowth * before.size())
+      joined.clear();  // a full adjustment
+    Refine(scene, /*while_merging=*/false, joined);
   }
 }
 
 void SceneAssembler::Refine(
-    const std::shared_ptr<colmap::Reconstruction>& scene,
-    bool while_merging) const {
+    const std::shared_ptr<colmap::Reconstruction>& scene, bool while_merging,
+    const std::vector<colmap::image_t>& only_images) const {
   const auto start = Clock::now();
-  const MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
+  MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
+  adjustment.only_images = only_images;
   const std::string report = RefineMergedModel(
       cache_, ColmapOptions(o_.mapper, num_threads_), adjustment, scene);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->NumRegImages());
-  const bool full = adjustment.longest_tracks_per_image == 0;
-  record_({full ? "refine merged model" : "refine growing scene", images,
-           images, SecondsSince(start), true,
+  const bool full =
+      adjustment.longest_tracks_per_image == 0 && only_images.empty();
+  record_({full                  ? "refine merged model"
+           : only_images.empty() ? "refine growing scene"
+                                 : "refine late merge",
+           images, images, SecondsSince(start), true,
            "tracks merged, global bundle adjustment: " + report});
   if (full) unrefined_.erase(scene.get());
   refined_size_[scene.get()] = scene->NumRegImages();

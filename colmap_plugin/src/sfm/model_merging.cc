@@ -254,6 +254,13 @@ std::string AdjustMergedBundle(
   mapper->ObservationManager().FilterObservationsWithNegativeDepth();
   const colmap::BundleAdjustmentOptions options =
       mapper_options.GlobalBundleAdjustment();
+  if (!adjustment.only_images.empty()) {
+    const BlockAdjustment block =
+        AdjustBlock(adjustment.only_images, options, &model);
+    return "block of " + std::to_string(adjustment.only_images.size()) +
+           " images, " + std::to_string(block.num_iterations) + " iterations" +
+           (block.converged ? "" : ", not converged");
+  }
   if (adjustment.longest_tracks_per_image > 0) {
     return AdjustOnLongestTracks(options, adjustment.longest_tracks_per_image,
                                  &model);

@@ -97,6 +97,11 @@ struct MergedModelAdjustment {
   // that later merges are tested against, at a part of the cost. 0: the
   // full adjustment above.
   size_t longest_tracks_per_image = 0;
+  // Not empty: only these images, their cameras and their points are
+  // adjusted (AdjustBlock; every other pose held where it observes those
+  // points): a small part appended to a model that was adjusted before,
+  // as COLMAP's local adjustment after a registration. Overrides the above.
+  std::vector<colmap::image_t> only_images;
 };
 
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
