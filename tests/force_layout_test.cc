@@ -36,7 +36,7 @@ double Distance(const Position& a, const Position& b) {
 
 TEST(ForceDirectedLayout, KeepsCliquesTogetherAndApart) {
   const int size = 12;
-  const auto p = ForceDirectedLayout(2 * size, TwoCliques(size));
+  const auto p = ForceDirectedLayout(ImageGraph(2 * size, TwoCliques(size)));
   ASSERT_EQ(p.size(), 2u * size);
   const Position a = Centroid(p, 0, size), b = Centroid(p, size, 2 * size);
   double spread = 0;
@@ -46,19 +46,18 @@ TEST(ForceDirectedLayout, KeepsCliquesTogetherAndApart) {
 }
 
 TEST(ForceDirectedLayout, SameInputSameLayout) {
-  const auto edges = TwoCliques(8);
-  EXPECT_EQ(ForceDirectedLayout(20, edges), ForceDirectedLayout(20, edges));
+  const ImageGraph graph(20, TwoCliques(8));
+  EXPECT_EQ(ForceDirectedLayout(graph), ForceDirectedLayout(graph));
   ForceLayoutOptions other;
   other.seed = 8;
-  EXPECT_NE(ForceDirectedLayout(20, edges),
-            ForceDirectedLayout(20, edges, other));
+  EXPECT_NE(ForceDirectedLayout(graph), ForceDirectedLayout(graph, other));
 }
 
 TEST(ForceDirectedLayout, PacksComponentsWithoutOverlap) {
   // The two cliques without their link, and four isolated images.
   std::vector<WeightedEdge> edges = TwoCliques(10);
   edges.pop_back();
-  const auto p = ForceDirectedLayout(24, edges);
+  const auto p = ForceDirectedLayout(ImageGraph(24, edges));
   auto box = [&](int begin, int end) {
     std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
     for (int v = begin; v < end; ++v) {
@@ -80,11 +79,12 @@ TEST(ForceDirectedLayout, PacksComponentsWithoutOverlap) {
 }
 
 TEST(ForceDirectedLayout, EmptyAndSingle) {
-  EXPECT_TRUE(ForceDirectedLayout(0, {}).empty());
-  EXPECT_EQ(ForceDirectedLayout(1, {}).size(), 1u);
+  EXPECT_TRUE(ForceDirectedLayout(ImageGraph()).empty());
+  EXPECT_EQ(ForceDirectedLayout(ImageGraph(1, {})).size(), 1u);
   ForceLayoutOptions bad;
   bad.theta = -1;
-  EXPECT_THROW(ForceDirectedLayout(1, {}, bad), std::invalid_argument);
+  EXPECT_THROW(ForceDirectedLayout(ImageGraph(1, {}), bad),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "tmr/scene/graph_summary.h"
+
 namespace tmr {
 namespace {
 
@@ -136,52 +138,29 @@ std::vector<Position> LayoutConnected(int num_vertices,
   return p;
 }
 
-// The connected components, largest first.
-std::vector<std::vector<int>> Components(
-    int num_vertices, const std::vector<WeightedEdge>& edges) {
-  std::vector<int> parent(num_vertices);
-  for (int v = 0; v < num_vertices; ++v) parent[v] = v;
-  auto root = [&](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const WeightedEdge& e : edges) parent[root(e.u)] = root(e.v);
-  std::vector<std::vector<int>> by_root(num_vertices);
-  for (int v = 0; v < num_vertices; ++v) by_root[root(v)].push_back(v);
-  std::vector<std::vector<int>> components;
-  for (std::vector<int>& c : by_root)
-    if (!c.empty()) components.push_back(std::move(c));
-  std::stable_sort(
-      components.begin(), components.end(),
-      [](const auto& a, const auto& b) { return a.size() > b.size(); });
-  return components;
-}
-
 }  // namespace
 
-std::vector<Position> ForceDirectedLayout(
-    int num_vertices, const std::vector<WeightedEdge>& edges,
-    const ForceLayoutOptions& options) {
+std::vector<Position> ForceDirectedLayout(const ImageGraph& graph,
+                                          const ForceLayoutOptions& options) {
   if (!options.Check()) throw std::invalid_argument("bad ForceLayoutOptions");
+  const int num_vertices = graph.NumVertices();
   std::vector<Position> p(num_vertices);
   std::mt19937 rng(options.seed);
   // Each connected component is laid out on its own: apart, nothing holds
   // them together, and they drift off. They are then packed in rows,
   // largest first, one edge length apart.
-  const std::vector<std::vector<int>> components =
-      Components(num_vertices, edges);
+  const std::vector<int> label = ConnectedComponents(graph);
+  const int num_components =
+      num_vertices == 0 ? 0 : *std::max_element(label.begin(), label.end()) + 1;
+  std::vector<std::vector<int>> components(num_components);
   std::vector<int> local(num_vertices);
-  std::vector<std::vector<WeightedEdge>> component_edges(components.size());
-  std::vector<int> component_of(num_vertices);
-  for (size_t c = 0; c < components.size(); ++c) {
-    for (size_t i = 0; i < components[c].size(); ++i) {
-      local[components[c][i]] = static_cast<int>(i);
-      component_of[components[c][i]] = static_cast<int>(c);
-    }
+  for (int v = 0; v < num_vertices; ++v) {
+    local[v] = static_cast<int>(components[label[v]].size());
+    components[label[v]].push_back(v);
   }
-  for (const WeightedEdge& e : edges) {
-    component_edges[component_of[e.u]].push_back(
-        {local[e.u], local[e.v], e.weight});
+  std::vector<std::vector<WeightedEdge>> component_edges(num_components);
+  for (const WeightedEdge& e : graph.Edges()) {
+    component_edges[label[e.u]].push_back({local[e.u], local[e.v], e.weight});
   }
   double area = 0;
   std::vector<std::vector<Position>> layouts;

@@ -38,7 +38,6 @@ struct ForceLayoutOptions {
 // Returns a position per vertex; the same graph and options give the same
 // layout.
 std::vector<std::array<double, 2>> ForceDirectedLayout(
-    int num_vertices, const std::vector<WeightedEdge>& edges,
-    const ForceLayoutOptions& options = {});
+    const ImageGraph& graph, const ForceLayoutOptions& options = {});
 
 }  // namespace tmr

@@ -31,7 +31,7 @@ bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,
   const int n = similarity.NumVertices();
   if (n == 0) return false;
   const std::vector<std::array<double, 2>> layout =
-      ForceDirectedLayout(n, similarity.Edges());
+      ForceDirectedLayout(similarity);
   double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
   for (const std::array<double, 2>& p : layout) {
     min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
