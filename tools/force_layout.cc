@@ -164,6 +164,7 @@ std::vector<Position> ForceDirectedLayout(const ImageGraph& graph,
   }
   double area = 0;
   std::vector<std::vector<Position>> layouts;
+  std::vector<Position> extent;  // width and height of each component
   for (size_t c = 0; c < components.size(); ++c) {
     layouts.push_back(LayoutConnected(static_cast<int>(components[c].size()),
                                       component_edges[c], options, &rng));
@@ -175,16 +176,14 @@ std::vector<Position> ForceDirectedLayout(const ImageGraph& graph,
       }
     }
     for (Position& q : layouts.back()) q = {q[0] - low[0], q[1] - low[1]};
-    area += (high[0] - low[0] + 1) * (high[1] - low[1] + 1);
+    extent.push_back({high[0] - low[0], high[1] - low[1]});
+    area += (extent.back()[0] + 1) * (extent.back()[1] + 1);
   }
   // Shelf packing into rows about as wide as the whole is high.
   const double row_width = std::sqrt(area);
   double x = 0, y = 0, row_height = 0;
   for (size_t c = 0; c < components.size(); ++c) {
-    double width = 0, height = 0;
-    for (const Position& q : layouts[c]) {
-      width = std::max(width, q[0]), height = std::max(height, q[1]);
-    }
+    const double width = extent[c][0], height = extent[c][1];
     if (x > 0 && x + width > row_width)
       x = 0, y += row_height + 1, row_height = 0;
     for (size_t i = 0; i < components[c].size(); ++i) {
