@@ -49,6 +49,20 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "refine distortion");
   add("Mapper.ba_global_max_num_iterations",
       &o->mapper.ba_global_max_num_iterations, "global BA iterations");
+  add("Mapper.ba_global_max_refinements", &o->mapper.ba_global_max_refinements,
+      "global BA rounds with re-triangulation");
+  add("Mapper.ba_global_function_tolerance",
+      &o->mapper.ba_global_function_tolerance,
+      "global BA: relative cost change that ends it (0: off)");
+  add("Mapper.ba_local_num_images", &o->mapper.ba_local_num_images,
+      "local BA: images adjusted");
+  add("Mapper.ba_local_max_num_iterations",
+      &o->mapper.ba_local_max_num_iterations, "local BA iterations");
+  add("Mapper.ba_local_max_refinements", &o->mapper.ba_local_max_refinements,
+      "local BA rounds with re-triangulation");
+  add("Mapper.ba_local_function_tolerance",
+      &o->mapper.ba_local_function_tolerance,
+      "local BA: relative cost change that ends it (0: off)");
   add("Tmr.fix_base_in_leaves", &o->fix_base_in_leaves,
       "keep kernel poses fixed in leaf tasks");
   add("Tmr.merge_min_shared_tracks", &o->merge_min_shared_tracks,

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -34,29 +35,70 @@ colmap::IncrementalMapperOptions ColmapOptions(
   o.ba_refine_principal_point = m.ba_refine_principal_point;
   o.ba_refine_extra_params = m.ba_refine_extra_params;
   o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
+  o.ba_global_max_refinements = m.ba_global_max_refinements;
+  o.ba_global_function_tolerance = m.ba_global_function_tolerance;
+  o.ba_local_num_images = m.ba_local_num_images;
+  o.ba_local_max_num_iterations = m.ba_local_max_num_iterations;
+  o.ba_local_max_refinements = m.ba_local_max_refinements;
+  o.ba_local_function_tolerance = m.ba_local_function_tolerance;
   o.num_threads = num_threads;
   return o;
 }
 
+uint64_t DatabaseContentHash(const std::string& path) {
+  // Header bytes SQLite rewrites at every commit, even of no change: the
+  // file change counter and the version-valid-for number.
+  const auto is_counter = [](uint64_t at) {
+    return (at >= 24 && at < 28) || (at >= 92 && at < 96);
+  };
+  uint64_t hash = 0x9E3779B97F4A7C15ull;
+  const auto mix = [&hash](uint64_t word) {
+    hash ^= word;
+    hash *= 0xBF58476D1CE4E5B9ull;
+    hash ^= hash >> 31;
+  };
+  for (const std::string& file : {path, path + "-wal"}) {
+    std::ifstream in(file, std::ios::binary);
+    std::vector<char> buffer(1 << 20);
+    uint64_t offset = 0;
+    while (in) {
+      in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      const size_t n = static_cast<size_t>(in.gcount());
+      if (file == path) {
+        for (size_t i = 0; i < n && offset + i < 96; ++i)
+          if (is_counter(offset + i)) buffer[i] = 0;
+      }
+      size_t i = 0;
+      for (uint64_t word; i + 8 <= n; i += 8) {
+        std::memcpy(&word, buffer.data() + i, 8);
+        mix(word);
+      }
+      for (; i < n; ++i) mix(static_cast<unsigned char>(buffer[i]));
+      offset += n;
+    }
+    mix(offset);
+  }
+  return hash;
+}
+
 std::string RunFingerprint(const TmrMapperOptions& o,
                            const std::string& tree_json) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto size = fs::file_size(o.database_path, ec);
-  const auto time = fs::last_write_time(o.database_path, ec);
   const MapperPassThroughOptions& m = o.mapper;
   std::ostringstream id;
   id.precision(17);
-  id << "database " << fs::weakly_canonical(o.database_path, ec).string() << " "
-     << size << " " << time.time_since_epoch().count() << "\nmapper "
-     << m.min_num_matches << " " << m.ignore_watermarks << " "
-     << m.init_min_num_inliers << " " << m.abs_pose_min_num_inliers << " "
-     << m.filter_max_reproj_error << " " << m.tri_min_angle << " "
-     << m.ba_refine_focal_length << " " << m.ba_refine_principal_point << " "
-     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations << " "
-     << m.init_max_forward_motion << " " << m.init_min_tri_angle << " "
-     << m.filter_min_tri_angle << "\ntasks " << o.fix_base_in_leaves << " "
-     << o.task_ba_global_ratio << " " << o.check_kernels << "\n"
+  id << "database " << std::hex << DatabaseContentHash(o.database_path)
+     << std::dec << "\nmapper " << m.min_num_matches << " "
+     << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
+     << m.abs_pose_min_num_inliers << " " << m.filter_max_reproj_error << " "
+     << m.tri_min_angle << " " << m.ba_refine_focal_length << " "
+     << m.ba_refine_principal_point << " " << m.ba_refine_extra_params << " "
+     << m.ba_global_max_num_iterations << " " << m.init_max_forward_motion
+     << " " << m.init_min_tri_angle << " " << m.filter_min_tri_angle << " "
+     << m.ba_global_max_refinements << " " << m.ba_global_function_tolerance
+     << " " << m.ba_local_num_images << " " << m.ba_local_max_num_iterations
+     << " " << m.ba_local_max_refinements << " "
+     << m.ba_local_function_tolerance << "\ntasks " << o.fix_base_in_leaves
+     << " " << o.task_ba_global_ratio << " " << o.check_kernels << "\n"
      << tree_json;
   return id.str();
 }
@@ -146,6 +188,15 @@ bool TmrMapperOptions::Check(std::string* error) const {
   if (mapper.init_min_num_inliers < 1 || mapper.abs_pose_min_num_inliers < 1 ||
       mapper.ba_global_max_num_iterations < 1)
     return fail("Mapper.*_min_num_inliers and iterations must be >= 1");
+  if (mapper.ba_global_max_refinements < 1 || mapper.ba_local_num_images < 2 ||
+      mapper.ba_local_max_num_iterations < 1 ||
+      mapper.ba_local_max_refinements < 1)
+    return fail(
+        "Mapper.ba_*_max_refinements and iterations must be >= 1, "
+        "ba_local_num_images >= 2");
+  if (!(mapper.ba_global_function_tolerance >= 0) ||
+      !(mapper.ba_local_function_tolerance >= 0))
+    return fail("Mapper.ba_*_function_tolerance must be >= 0");
   if (!(mapper.filter_max_reproj_error > 0) || !(mapper.tri_min_angle > 0))
     return fail("Mapper.filter_max_reproj_error and tri_min_angle must be > 0");
   return match_graph.Check(error) && tree.Check(error);

@@ -6,6 +6,7 @@
 #include <colmap/controllers/incremental_mapper.h>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -33,9 +34,16 @@ void ReleaseFreedMemory();
 // Seconds of wall time since `start`.
 double SecondsSince(std::chrono::steady_clock::time_point start);
 
+// A hash of the content of a SQLite database file and of its write-ahead
+// log, if any. It leaves out the two header counters SQLite rewrites at every
+// commit even when no row changed (COLMAP's own tools, hierarchical_mapper
+// among them, open the database for writing and do that), and the
+// modification time.
+uint64_t DatabaseContentHash(const std::string& path);
+
 // What the kernel and leaf tasks of a run depend on: the partition
-// (tree.json), the database file (size and modification time) and the
-// options of the tasks. A rerun reuses finished tasks only when it matches.
+// (tree.json), the database's content (DatabaseContentHash) and the options
+// of the tasks. A rerun reuses finished tasks only when it matches.
 std::string RunFingerprint(const TmrMapperOptions& options,
                            const std::string& tree_json);
 
