@@ -33,11 +33,13 @@ fs::path WriteTwoImageDatabase() {
 TEST(DatabaseContentHash, IgnoresCommitsThatChangeNoRowAndSeesNewMatches) {
   const fs::path path = WriteTwoImageDatabase();
   const uint64_t written = DatabaseContentHash(path.string());
+  const std::string bytes = ReadFileToString(path.string());
 
   // COLMAP's tools open the database for writing (hierarchical_mapper
   // does): SQLite rewrites its change counters and the modification time.
   { colmap::Database reopened(path.string()); }
   fs::last_write_time(path, fs::file_time_type::clock::now());
+  EXPECT_NE(ReadFileToString(path.string()), bytes);
   EXPECT_EQ(DatabaseContentHash(path.string()), written);
 
   {
