@@ -117,6 +117,8 @@ MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
   adjustment.max_block_images = options.ba_max_block_images;
   if (while_merging)
     adjustment.longest_tracks_per_image = options.merge_refine_points_per_image;
+  else
+    adjustment.max_refinements = options.mapper.ba_global_max_refinements;
   return adjustment;
 }
 

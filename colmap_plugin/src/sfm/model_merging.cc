@@ -282,11 +282,35 @@ std::string RefineMergedModel(
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
   std::string report;
-  if (adjustment.enabled)
-    report = AdjustMergedBundle(mapper_options, adjustment, &mapper) + "; ";
-  const size_t filtered = mapper.FilterPoints(mapper_options.Mapper());
+  size_t filtered = 0;
+  // A model adjusted by blocks gets one round: repeated block passes moved
+  // the city block of the test (blocks of at most 60 images) from 0.030 to
+  // 0.090 deg median rotation error.
+  const bool by_blocks = adjustment.max_block_images > 0 &&
+                         model->NumRegImages() > adjustment.max_block_images;
+  const int rounds = adjustment.enabled && !by_blocks &&
+                             adjustment.only_images.empty() &&
+                             adjustment.longest_tracks_per_image == 0
+                         ? adjustment.max_refinements
+                         : 1;
+  for (int round = 0; round < rounds; ++round) {
+    const size_t num_observations = model->ComputeNumObservations();
+    if (adjustment.enabled) {
+      report += (round > 0 ? "; round " + std::to_string(round + 1) + ": "
+                           : "") +
+                AdjustMergedBundle(mapper_options, adjustment, &mapper);
+    }
+    size_t changed = mapper.CompleteAndMergeTracks(triangulation);
+    const size_t round_filtered = mapper.FilterPoints(mapper_options.Mapper());
+    filtered += round_filtered;
+    changed += round_filtered;
+    if (num_observations == 0 ||
+        changed < adjustment.max_refinement_change * num_observations)
+      break;
+  }
   mapper.EndReconstruction(/*discard=*/false);
-  return report + std::to_string(filtered) + " points filtered";
+  return report + (report.empty() ? "" : "; ") + std::to_string(filtered) +
+         " points filtered";
 }
 
 }  // namespace tmr

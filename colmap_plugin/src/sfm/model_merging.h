@@ -102,6 +102,17 @@ struct MergedModelAdjustment {
   // points): a small part appended to a model that was adjusted before,
   // as COLMAP's local adjustment after a registration. Overrides the above.
   std::vector<colmap::image_t> only_images;
+  // Rounds of adjustment, each followed by completing and merging tracks
+  // and filtering points, until fewer than max_refinement_change of the
+  // observations changed (COLMAP's IterativeGlobalRefinement, which ends
+  // every run of its mapper with Mapper.ba_global_max_refinements = 5 and
+  // 0.0005). A single adjustment of a freshly merged model stops on a
+  // re-linked track set built from its unadjusted poses: on a 192-image
+  // tmr_synth city block (seed 1) one round left a median rotation error
+  // of 0.099 deg, two rounds 0.044. Only a model adjusted whole gets more
+  // than one round (not by blocks, longest tracks or only_images).
+  int max_refinements = 1;
+  double max_refinement_change = 0.0005;
 };
 
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
@@ -121,10 +132,11 @@ std::string AdjustMergedBundle(
     const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
-// the full correspondence graph), then global bundle adjustment
-// (AdjustMergedBundle) and point filtering, as COLMAP's mapper does after
-// registering images. Returns the adjustment's report (AdjustMergedBundle)
-// and the number of points filtered.
+// the full correspondence graph, retriangulation), then global bundle
+// adjustment (AdjustMergedBundle), track merging and point filtering, in
+// adjustment.max_refinements rounds at most, as COLMAP's mapper refines a
+// grown model (IterativeGlobalRefinement). Returns each round's adjustment
+// report and the number of points filtered.
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalMapperOptions& mapper_options,
