@@ -168,6 +168,35 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
             0.5 * before.rotation_error_deg.median);
 }
 
+// A model adjusted whole gets rounds (COLMAP's IterativeGlobalRefinement):
+// the split tracks of the seam only fit after the first adjustment, are
+// merged then and adjusted again.
+TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
+  MergedModelAdjustment one_round;
+  one_round.max_block_images = 0;
+  MergedModelAdjustment rounds = one_round;
+  rounds.max_refinements = 5;
+  const auto once = MisalignedHalves();
+  const auto repeated = MisalignedHalves();
+  const std::string report_once = RefineMergedModel(
+      *cache_, colmap::IncrementalMapperOptions(), one_round, once);
+  const std::string report = RefineMergedModel(
+      *cache_, colmap::IncrementalMapperOptions(), rounds, repeated);
+  std::cout << report << "\n";
+  EXPECT_EQ(report_once.find("round 2"), std::string::npos) << report_once;
+  EXPECT_NE(report.find("round 2"), std::string::npos) << report;
+  EXPECT_EQ(report.find("round 6"), std::string::npos) << report;
+  // More observations in fewer tracks, and poses no worse.
+  EXPECT_LT(repeated->NumPoints3D(), once->NumPoints3D());
+  const ModelEvaluation a = EvaluateReconstruction(*gt_, *once, {});
+  const ModelEvaluation b = EvaluateReconstruction(*gt_, *repeated, {});
+  std::cout << "median rotation error: one round "
+            << a.rotation_error_deg.median << " deg, rounds "
+            << b.rotation_error_deg.median << " deg\n";
+  EXPECT_LE(b.rotation_error_deg.median,
+            1.05 * a.rotation_error_deg.median + 1e-3);
+}
+
 // A small part that joined a model adjusted before (a late scene merge):
 // only its images and points are adjusted; every other pose stays as it
 // was, and the part comes back onto the model.

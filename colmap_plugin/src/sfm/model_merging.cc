@@ -296,9 +296,9 @@ std::string RefineMergedModel(
   for (int round = 0; round < rounds; ++round) {
     const size_t num_observations = model->ComputeNumObservations();
     if (adjustment.enabled) {
-      report += (round > 0 ? "; round " + std::to_string(round + 1) + ": "
-                           : "") +
-                AdjustMergedBundle(mapper_options, adjustment, &mapper);
+      report +=
+          (round > 0 ? "; round " + std::to_string(round + 1) + ": " : "") +
+          AdjustMergedBundle(mapper_options, adjustment, &mapper);
     }
     size_t changed = mapper.CompleteAndMergeTracks(triangulation);
     const size_t round_filtered = mapper.FilterPoints(mapper_options.Mapper());
