@@ -12,7 +12,9 @@
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
 # tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
-# tmr_mapper (e.g. "--Tmr.keep_work 1").
+# tmr_mapper (e.g. "--Tmr.keep_work 1"); STOCK_CAP=SECONDS stops `colmap
+# mapper` after that long and reports the images it had registered (a
+# lower bound on its time, for scenes where it takes hours).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
@@ -37,7 +39,7 @@ synth_args() {
 timed() {
   local log=$1; shift
   /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || true
-  awk '{printf "%s %.0f\n", $1, $2 / 1024}' "$log.time"
+  tail -1 "$log.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}'
 }
 
 score() {  # NAME SCENE IMAGES TOOL WALL PEAK MODEL_DIR
@@ -75,15 +77,23 @@ for scene in "${scenes[@]}"; do
   for tool in ${TOOLS:-colmap_mapper colmap_hierarchical tmr_mapper}; do
     out="$dir/$tool"
     if [[ -n "${REUSE:-}" && -f "$out.log.time" ]]; then  # REUSE=1: keep earlier runs
-      read -r wall peak < <(awk '{printf "%s %.0f\n", $1, $2 / 1024}' "$out.log.time")
+      read -r wall peak < <(tail -1 "$out.log.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
       score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
       continue
     fi
     rm -rf "$out" && mkdir -p "$out"
     case $tool in
       colmap_mapper)
-        read -r wall peak < <(timed "$out.log" "$COLMAP" mapper --database_path "$dir/database.db" \
-          --image_path "$dir/images" --output_path "$out" --Mapper.num_threads "$THREADS") ;;
+        read -r wall peak < <(timed "$out.log" ${STOCK_CAP:+timeout -s INT "$STOCK_CAP"} "$COLMAP" mapper \
+          --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
+          --Mapper.num_threads "$THREADS")
+        if [[ -n "${STOCK_CAP:-}" && -z "$(ls -A "$out")" ]]; then  # stopped at the cap
+          registered=$(grep -o 'Registering image #[0-9]* ([0-9]*)' "$out.log" | tail -1 | grep -o '([0-9]*' | tr -d '(')
+          echo "$scene,$images,colmap_mapper_capped,$wall,$peak,${registered:-0},,0,,,0" >>"$OUT/results.csv"
+          printf "%-10s %-22s %8s s %7s MiB   stopped at the cap: %s of %s images registered\n" \
+            "$scene" "colmap_mapper" "$wall" "$peak" "${registered:-0}" "$images"
+          continue
+        fi ;;
       colmap_hierarchical)
         read -r wall peak < <(timed "$out.log" "$COLMAP" hierarchical_mapper \
           --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
