@@ -35,11 +35,17 @@ synth_args() {
   esac
 }
 
+# Prints "wall_s peak_mib" from /usr/bin/time's output file (its last line;
+# a line before it tells a non-zero exit status).
+wall_and_peak() {
+  tail -1 "$1" | awk '{printf "%s %.0f\n", $1, $2 / 1024}'
+}
+
 # Runs a command under /usr/bin/time; prints "wall_s peak_mib".
 timed() {
   local log=$1; shift
   /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || true
-  tail -1 "$log.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}'
+  wall_and_peak "$log.time"
 }
 
 score() {  # NAME SCENE IMAGES TOOL WALL PEAK MODEL_DIR
@@ -77,7 +83,7 @@ for scene in "${scenes[@]}"; do
   for tool in ${TOOLS:-colmap_mapper colmap_hierarchical tmr_mapper}; do
     out="$dir/$tool"
     if [[ -n "${REUSE:-}" && -f "$out.log.time" ]]; then  # REUSE=1: keep earlier runs
-      read -r wall peak < <(tail -1 "$out.log.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
+      read -r wall peak < <(wall_and_peak "$out.log.time")
       score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
       continue
     fi
@@ -87,7 +93,7 @@ for scene in "${scenes[@]}"; do
         read -r wall peak < <(timed "$out.log" ${STOCK_CAP:+timeout -s INT "$STOCK_CAP"} "$COLMAP" mapper \
           --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
           --Mapper.num_threads "$THREADS")
-        if [[ -n "${STOCK_CAP:-}" && -z "$(ls -A "$out")" ]]; then  # stopped at the cap
+        if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
           registered=$(grep -o 'Registering image #[0-9]* ([0-9]*)' "$out.log" | tail -1 | grep -o '([0-9]*' | tr -d '(')
           echo "$scene,$images,colmap_mapper_capped,$wall,$peak,${registered:-0},,0,,,0" >>"$OUT/results.csv"
           printf "%-10s %-22s %8s s %7s MiB   stopped at the cap: %s of %s images registered\n" \
