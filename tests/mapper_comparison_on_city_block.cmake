@@ -22,15 +22,9 @@ run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
 run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
     --output_path ${WORK_DIR}/tmr_blocks --Mapper.num_threads 2
     --Tmr.ba_max_block_images 60)
-run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/stock
-    --output_json ${WORK_DIR}/stock.json)
-run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/tmr
-    --output_json ${WORK_DIR}/tmr.json)
-largest_model(${WORK_DIR}/stock.json stock)
-largest_model(${WORK_DIR}/tmr.json tmr)
-run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${WORK_DIR}/tmr_blocks
-    --output_json ${WORK_DIR}/tmr_blocks.json)
-largest_model(${WORK_DIR}/tmr_blocks.json blocks)
+score(stock ${WORK_DIR}/stock)
+score(tmr ${WORK_DIR}/tmr)
+score(blocks ${WORK_DIR}/tmr_blocks)
 
 math(EXPR needed "(${stock_images} * 95 + 99) / 100")
 if(stock_registered LESS needed)

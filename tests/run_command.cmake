@@ -87,3 +87,12 @@ function(expect_rotation_no_worse tmr stock percent slack label)
     message(FATAL_ERROR "${label}: median rotation error ${tmr} deg, stock ${stock} deg")
   endif()
 endfunction()
+
+# score(PREFIX MODELS): scores the models in folder MODELS against the ground
+# truth in ${WORK_DIR}/gt with tmr_eval (${WORK_DIR}/PREFIX.json) and sets
+# the figures of largest_model(... PREFIX) in the caller's scope.
+macro(score prefix models)
+  run(${TMR_EVAL} --gt ${WORK_DIR}/gt --model ${models}
+      --output_json ${WORK_DIR}/${prefix}.json)
+  largest_model(${WORK_DIR}/${prefix}.json ${prefix})
+endmacro()

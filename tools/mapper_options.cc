@@ -67,6 +67,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
       "keep kernel poses fixed in leaf tasks");
   add("Tmr.merge_min_shared_tracks", &o->merge_min_shared_tracks,
       "tau of the merge rule");
+  add("Tmr.merge_register_images", &o->merge_register_images,
+      "align by registering this many images on a scene (0: off)");
   add("Tmr.task_ba_global_ratio", &o->task_ba_global_ratio,
       "model growth between global BAs in tasks (COLMAP: 1.1)");
   add("Tmr.check_kernels", &o->check_kernels,

@@ -1,7 +1,8 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// tmr_synth --database_path DB [--model_path DIR] [--family places|street|city]
-// writes a synthetic scene as a COLMAP database (through COLMAP's Database
-// class) plus its ground-truth model. See docs/synthetic_scenes.md.
+// tmr_synth --database_path DB [--model_path DIR] [--family
+// places|plazas|street|city] writes a synthetic scene as a COLMAP database
+// (through COLMAP's Database class) plus its ground-truth model. See
+// docs/synthetic_scenes.md.
 #include <boost/program_options.hpp>
 
 #include <chrono>
@@ -23,18 +24,22 @@ int main(int argc, char** argv) {
       "database to write (must not exist)")(
       "model_path", po::value(&model_path),
       "folder for the ground-truth model (COLMAP binary)");
-  tmr::AddOption(&desc, "family", &o.family, "places, street or city");
+  tmr::AddOption(&desc, "family", &o.family, "places, plazas, street or city");
   tmr::AddOption(&desc, "seed", &o.seed, "random seed");
   tmr::AddOption(&desc, "num_places", &o.num_places,
-                 "places: linked dense places");
+                 "places, plazas: linked dense places");
   tmr::AddOption(&desc, "cameras_per_place", &o.cameras_per_place,
-                 "places: ring cameras");
+                 "places, plazas: ring cameras per place");
   tmr::AddOption(&desc, "num_unlinked_places", &o.num_unlinked_places,
                  "places: places without link");
   tmr::AddOption(&desc, "link_spacing", &o.link_spacing,
                  "places: metres between link cameras (0: no link)");
   tmr::AddOption(&desc, "place_distance", &o.place_distance,
                  "places: metres between places");
+  tmr::AddOption(&desc, "plaza_distance", &o.plaza_distance,
+                 "plazas: metres between neighbouring plazas");
+  tmr::AddOption(&desc, "plaza_radius", &o.plaza_radius,
+                 "plazas: radius of each plaza's camera ring");
   tmr::AddOption(&desc, "street_length", &o.street_length,
                  "street: length in metres");
   tmr::AddOption(&desc, "street_gap", &o.street_gap,
@@ -71,6 +76,8 @@ int main(int argc, char** argv) {
                  "extra keypoints per detection");
   tmr::AddOption(&desc, "match_probability", &o.match_probability,
                  "chance two detections match");
+  tmr::AddOption(&desc, "match_angle_falloff_deg", &o.match_angle_falloff_deg,
+                 "viewpoint change (deg) at which matching falls off");
   tmr::AddOption(&desc, "max_pairs_per_image", &o.max_pairs_per_image,
                  "retrieval: partners per image (0: all)");
   tmr::AddOption(&desc, "outlier_match_ratio", &o.outlier_match_ratio,

@@ -7,8 +7,10 @@
 #
 # Usage: tools/bench/bench_mapper.sh [SCENE ...]
 #   SCENE: city1 city2 city3 city4 city6 (well-connected, 192 / 552 / 1,088 /
-#          1,800 / 3,752 images) or placesN, e.g. places8 places32 (weakly linked
-#          places of about 75 images each). Default: city1 places4.
+#          1,800 / 3,752 images), placesN, e.g. places8 places32 (weakly linked
+#          places of about 75 images each), or plazasN, e.g. plazas8 plazas16
+#          (overlapping plazas of 120 photos whose clusters share few tracks,
+#          detection 0.35). Default: city1 places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
 # tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
@@ -31,6 +33,9 @@ synth_args() {
     city*) local n=${1#city}; echo "--family city --city_blocks_x $n --city_blocks_y $n" ;;
     places*) local n=${1#places}
       echo "--family places --num_places $n --num_unlinked_places 0 --link_spacing 9" ;;
+    plazas*) local n=${1#plazas}
+      echo "--family plazas --num_places $n --cameras_per_place 120" \
+        "--detection_probability 0.35 --match_probability 0.7 --match_angle_falloff_deg 12" ;;
     *) echo "unknown scene $1" >&2; exit 2 ;;
   esac
 }

@@ -2,6 +2,7 @@
 #include "controllers/scene_assembly.h"
 
 #include <colmap/estimators/alignment.h>
+#include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction_manager.h>
 #include <colmap/sfm/incremental_mapper.h>
 
@@ -11,11 +12,23 @@
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/model_merging.h"
 #include "sfm/reconstruction_task.h"
+#include "sfm/registration_alignment.h"
 
 namespace tmr {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// What a successful scene merge rested on.
+std::string DescribeFit(const ModelAlignment& a) {
+  if (a.num_registered_images > 0) {
+    return std::to_string(a.num_supporting_images) + " of " +
+           std::to_string(a.num_registered_images) +
+           " images registered on the scene's points fit";
+  }
+  return std::to_string(a.num_inliers) + " of " +
+         std::to_string(a.num_shared_tracks) + " shared tracks fit";
+}
 
 // Names of the images the models register, except model `skip`.
 std::unordered_set<std::string> HeldImageNames(
@@ -117,7 +130,102 @@ SceneAssembler::SceneAssembler(
       merge_database_(std::move(merge_database)),
       image_names_(std::move(image_names)),
       num_threads_(num_threads),
-      record_(std::move(record)) {}
+      record_(std::move(record)) {
+  for (const auto& [pair_id, num_correspondences] :
+       cache_->CorrespondenceGraph()->NumCorrespondencesBetweenImages()) {
+    if (num_correspondences == 0) continue;
+    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_id);
+    image_links_[id1].emplace_back(id2, num_correspondences);
+    image_links_[id2].emplace_back(id1, num_correspondences);
+  }
+}
+
+SceneAssembler::ModelLink SceneAssembler::Link(
+    const colmap::Reconstruction& a, const colmap::Reconstruction& b) const {
+  ModelLink link;
+  for (const colmap::image_t id : a.RegImageIds()) {
+    const auto it = image_links_.find(id);
+    if (it == image_links_.end()) continue;
+    for (const auto& [other, num_correspondences] : it->second) {
+      if (!b.ExistsImage(other) || !b.IsImageRegistered(other)) continue;
+      ++link.num_pairs;
+      link.num_correspondences += num_correspondences;
+    }
+  }
+  return link;
+}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>>
+SceneAssembler::LinkedScenes(
+    const colmap::Reconstruction& model,
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  std::unordered_map<colmap::image_t, int> owner;
+  for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
+    for (const colmap::image_t id : scenes[i]->RegImageIds()) owner[id] = i;
+  }
+  std::vector<int> matches(scenes.size(), 0);
+  for (const colmap::image_t id : model.RegImageIds()) {
+    const auto links = image_links_.find(id);
+    if (links == image_links_.end()) continue;
+    for (const auto& [other, num_correspondences] : links->second) {
+      const auto it = owner.find(other);
+      if (it != owner.end()) matches[it->second] += num_correspondences;
+    }
+  }
+  std::vector<int> order;
+  for (int i = 0; i < static_cast<int>(scenes.size()); ++i)
+    if (matches[i] > 0) order.push_back(i);
+  // A stable sort keeps the larger scene first on a tie.
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return matches[a] > matches[b]; });
+  std::vector<std::shared_ptr<colmap::Reconstruction>> linked;
+  for (const int i : order) linked.push_back(scenes[i]);
+  return linked;
+}
+
+ModelAlignment SceneAssembler::Align(
+    const colmap::Reconstruction& scene,
+    const colmap::Reconstruction& model) const {
+  const colmap::CorrespondenceGraph& graph = *cache_->CorrespondenceGraph();
+  ModelAlignmentOptions tracks;
+  tracks.min_shared_tracks = o_.merge_min_shared_tracks;
+  tracks.seed = static_cast<unsigned>(o_.tree.seed);
+  const ModelAlignment by_tracks =
+      AlignModelsBySharedTracks(scene, model, graph, tracks);
+  if (by_tracks.success || o_.merge_register_images == 0) return by_tracks;
+  RegistrationAlignmentOptions registration;
+  registration.max_images = o_.merge_register_images;
+  registration.min_num_inliers = o_.mapper.abs_pose_min_num_inliers;
+  registration.seed = tracks.seed;
+  ModelAlignment by_images =
+      AlignModelsByRegisteredImages(scene, model, graph, registration);
+  if (!by_images.success) {
+    by_images.reason = by_tracks.reason + "; " + by_images.reason;
+  }
+  // The weak-link report gives the shared tracks of the track rule.
+  by_images.num_shared_tracks = by_tracks.num_shared_tracks;
+  by_images.num_inliers = by_tracks.num_inliers;
+  return by_images;
+}
+
+std::vector<TmrWeakLink> SceneAssembler::WeakLinks(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  std::vector<TmrWeakLink> links;
+  for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
+    for (int j = i + 1; j < static_cast<int>(scenes.size()); ++j) {
+      const ModelLink link = Link(*scenes[j], *scenes[i]);
+      if (link.num_pairs == 0) continue;
+      const ModelAlignment a = Align(*scenes[i], *scenes[j]);
+      links.push_back({i, j, link.num_pairs, link.num_correspondences,
+                       a.num_shared_tracks, a.num_registered_images,
+                       a.num_supporting_images,
+                       a.success ? "they align now (after the last merge "
+                                   "round)"
+                                 : a.reason});
+    }
+  }
+  return links;
+}
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
@@ -168,41 +276,34 @@ std::vector<std::shared_ptr<colmap::Reconstruction>>
 SceneAssembler::MergeScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) const {
   SortBySize(&clusters);
-  ModelAlignmentOptions align;
-  align.min_shared_tracks = o_.merge_min_shared_tracks;
-  align.seed = static_cast<unsigned>(o_.tree.seed);
-  // Each cluster model joins the first (largest) scene it aligns with;
-  // repeat until nothing merges, since a merge can create new overlaps.
+  // Each cluster model joins the first scene it aligns with, the most
+  // strongly linked first; repeat until nothing merges, since a merge can
+  // create new overlaps.
   bool merged = true;
   while (merged) {
     merged = false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> next;
     for (const auto& model : clusters) {
       bool joined = false;
-      for (const auto& scene : next) {
+      for (const auto& scene : LinkedScenes(*model, next)) {
         const auto start = Clock::now();
-        const ModelAlignment a = AlignModelsBySharedTracks(
-            *scene, *model, *cache_->CorrespondenceGraph(), align);
-        TmrTaskReport task{
-            "merge a model of " + std::to_string(model->NumRegImages()) +
-                " images into a scene of " +
-                std::to_string(scene->NumRegImages()),
-            static_cast<int>(model->NumRegImages()),
-            0,
-            0.0,
-            a.success,
-            a.success
-                ? std::to_string(a.num_inliers) + " of " +
-                      std::to_string(a.num_shared_tracks) + " shared tracks fit"
-                : a.reason};
+        const ModelAlignment a = Align(*scene, *model);
+        TmrTaskReport task{"merge a model of " +
+                               std::to_string(model->NumRegImages()) +
+                               " images into a scene of " +
+                               std::to_string(scene->NumRegImages()),
+                           static_cast<int>(model->NumRegImages()),
+                           0,
+                           0.0,
+                           a.success,
+                           a.success ? DescribeFit(a) : a.reason};
         if (a.success) {
           AppendReconstruction(*model, a.target_from_source, scene.get());
           unrefined_.insert(scene.get());
           task.num_registered = static_cast<int>(scene->NumRegImages());
         }
         task.seconds = SecondsSince(start);
-        // Pairs with no track in common are no merge candidates.
-        if (a.success || a.num_shared_tracks > 0) record_(task);
+        record_(task);
         if (a.success) {
           // The model is part of the scene now and may be freed: no record
           // of it may outlive it (the sets are keyed by address).
@@ -226,16 +327,17 @@ SceneAssembler::MergeScenes(
   return clusters;
 }
 
-// Registers the images that no model holds yet (kernel images the kernel
-// task could not register, leaves of failed leaf tasks, unclustered
-// images) into each scene model, largest first, as COLMAP's mapper
-// continues a model: next image by visible points, registration,
-// triangulation, local refinement. It works on the loaded correspondences;
-// the one global adjustment follows in RefineMergedScenes.
+// Registers into each scene model, largest first, the images that no model
+// holds yet (kernel images the kernel task could not register, leaves of
+// failed leaf tasks, unclustered images) and those of smaller models that
+// no merge joined to it, as COLMAP's mapper continues a model: next image
+// by visible points, registration, triangulation, local refinement. It
+// works on the loaded correspondences; the one global adjustment follows
+// in RefineMergedScenes. An image a smaller model gave up leaves that
+// model.
 void SceneAssembler::CompleteScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
-  // Nothing to do when every image is held.
-  if (HeldImageNames(*scenes).size() >= image_names_.size()) return;
+  SortBySize(scenes);
   const auto colmap_options = ColmapOptions(o_.mapper, num_threads_);
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
   const auto triangulation = colmap_options.Triangulation();
@@ -244,11 +346,15 @@ void SceneAssembler::CompleteScenes(
     const auto start = Clock::now();
     const auto& scene = (*scenes)[i];
     const int before = static_cast<int>(scene->NumRegImages());
+    if (before < 2) continue;
     const std::vector<colmap::image_t>& held = scene->RegImageIds();
     const std::unordered_set<colmap::image_t> before_ids(held.begin(),
                                                          held.end());
+    // Larger scenes keep their images; smaller models offer theirs.
     std::unordered_set<colmap::image_t> held_elsewhere;
-    for (const std::string& name : HeldImageNames(*scenes, i)) {
+    for (const std::string& name :
+         HeldImageNames(std::vector<std::shared_ptr<colmap::Reconstruction>>(
+             scenes->begin(), scenes->begin() + i))) {
       if (const colmap::Image* image = cache_->FindImageWithName(name))
         held_elsewhere.insert(image->ImageId());
     }
@@ -275,10 +381,25 @@ void SceneAssembler::CompleteScenes(
     const int removed = RemoveUnanchoredImages(
         before_ids, options.abs_pose_min_num_inliers, scene.get());
     const int added = static_cast<int>(scene->NumRegImages()) - before;
+    int taken = 0;
+    for (int j = i + 1; j < static_cast<int>(scenes->size()); ++j) {
+      colmap::Reconstruction& smaller = *(*scenes)[j];
+      for (const colmap::image_t id :
+           std::vector<colmap::image_t>(smaller.RegImageIds())) {
+        if (!before_ids.count(id) && scene->ExistsImage(id) &&
+            scene->IsImageRegistered(id)) {
+          smaller.DeRegisterImage(id);
+          ++taken;
+        }
+      }
+    }
     if (added > 0) unrefined_.insert(scene.get());
     record_({"complete model " + std::to_string(i), before,
              static_cast<int>(scene->NumRegImages()), SecondsSince(start), true,
              std::to_string(added) + " images added" +
+                 (taken > 0 ? " (" + std::to_string(taken) +
+                                  " of them from smaller models)"
+                            : "") +
                  (removed > 0
                       ? "; " + std::to_string(removed) +
                             " taken out again (fewer than " +
@@ -286,6 +407,15 @@ void SceneAssembler::CompleteScenes(
                             " points of the scene before)"
                       : "")});
   }
+  // Models that gave up all but one image are gone.
+  scenes->erase(std::remove_if(scenes->begin(), scenes->end(),
+                               [this](const auto& model) {
+                                 if (model->NumRegImages() >= 2) return false;
+                                 unrefined_.erase(model.get());
+                                 refined_size_.erase(model.get());
+                                 return true;
+                               }),
+                scenes->end());
   SortBySize(scenes);
 }
 

@@ -85,8 +85,10 @@ class SceneAssembler {
   std::vector<std::shared_ptr<colmap::Reconstruction>> Assemble(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
 
-  // Each model joins the first (largest) scene it aligns with, until nothing
-  // merges; returns the scene models, largest first. A scene is refined
+  // Each model joins the first scene it aligns with (Align), the scenes
+  // tried in order of the verified matches between them and the model,
+  // those without any skipped, until nothing merges; returns the scene
+  // models, largest first. A scene is refined
   // (Refine) whenever it has grown by options.merge_refine_growth since its
   // last global adjustment, as COLMAP's mapper refines a model grown by
   // 10%: parts appended one after another around a city's loops drift
@@ -98,9 +100,13 @@ class SceneAssembler {
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
 
   // COLMAP's incremental mapper continues each scene, largest first, with
-  // the images no other scene holds (registration and local refinement on
+  // the images no larger scene holds (registration and local refinement on
   // the loaded correspondences; the scene is then left to
-  // RefineMergedScenes).
+  // RefineMergedScenes): those no model holds, and the second chance of
+  // the images of smaller models that no merge joined to it (a leaf's part
+  // model mapped from scratch because its photos see points of another
+  // kernel's cluster). An image registered so leaves its smaller model;
+  // models left with fewer than two images are dropped.
   void CompleteScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
 
@@ -130,6 +136,32 @@ class SceneAssembler {
   bool ReconstructLeftovers(
       std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
 
+  // The scene merge of `model` into `scene`: the shared-track rule
+  // (AlignModelsBySharedTracks), and where it refuses, images of the model
+  // registered on the scene's points (AlignModelsByRegisteredImages, with
+  // options.merge_register_images). On refusal the reason names both.
+  ModelAlignment Align(const colmap::Reconstruction& scene,
+                       const colmap::Reconstruction& model) const;
+
+  // The scenes that verified pairs link `model` to, the one with the most
+  // verified matches first.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> LinkedScenes(
+      const colmap::Reconstruction& model,
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+
+  // Verified image pairs between two models and their correspondences.
+  struct ModelLink {
+    int num_pairs = 0;
+    int num_correspondences = 0;
+  };
+  ModelLink Link(const colmap::Reconstruction& a,
+                 const colmap::Reconstruction& b) const;
+
+  // Every pair of `scenes` (the final models, in output order) that
+  // verified pairs link: how strongly, and why Align keeps them apart.
+  std::vector<TmrWeakLink> WeakLinks(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+
  private:
   const TmrMapperOptions& o_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
@@ -137,6 +169,10 @@ class SceneAssembler {
   std::vector<std::string> image_names_;
   int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
+  // Verified pairs of each image: partner and number of correspondences.
+  std::unordered_map<colmap::image_t,
+                     std::vector<std::pair<colmap::image_t, int>>>
+      image_links_;
   // Re-links tracks, global adjustment and filtering (RefineMergedModel):
   // the full adjustment, or while merging the one that the options ask for
   // then (MergedAdjustment), or of `only_images` when not empty.

@@ -339,9 +339,17 @@ bool TmrMapperStages::AssembleAndWrite(
       return Fail("cannot write model '" + path + "'", error);
     report->model_sizes.push_back(static_cast<int>(scenes[i]->NumRegImages()));
   }
+  report->weak_links = assembler.WeakLinks(scenes);
   if (progress) {
     progress("wrote " + std::to_string(scenes.size()) + " models to " +
              o_.output_path);
+    for (const TmrWeakLink& w : report->weak_links) {
+      progress("models " + std::to_string(w.model1) + " and " +
+               std::to_string(w.model2) +
+               " stay apart: " + std::to_string(w.num_pairs) +
+               " verified pairs (" + std::to_string(w.num_correspondences) +
+               " matches); " + w.reason);
+    }
   }
   return true;
 }

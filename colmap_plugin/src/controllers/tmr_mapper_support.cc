@@ -133,6 +133,19 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+namespace {
+
+std::string JsonEscaped(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    if (c == '"' || c == '\\') escaped += '\\';
+    escaped += c;
+  }
+  return escaped;
+}
+
+}  // namespace
+
 std::string ReportJson(const TmrMapperReport& r) {
   std::ostringstream out;
   out << "{\"num_images\": " << r.num_images
@@ -149,10 +162,18 @@ std::string ReportJson(const TmrMapperReport& r) {
         << ", \"seconds\": " << t.seconds
         << ", \"success\": " << (t.success ? "true" : "false")
         << ", \"reused\": " << (t.reused ? "true" : "false")
-        << ", \"message\": \"";
-    for (const char c : t.message)
-      out << (c == '"' || c == '\\' ? "\\" : "") << c;
-    out << "\"}";
+        << ", \"message\": \"" << JsonEscaped(t.message) << "\"}";
+  }
+  out << "\n], \"weak_links\": [";
+  for (size_t i = 0; i < r.weak_links.size(); ++i) {
+    const TmrWeakLink& w = r.weak_links[i];
+    out << (i ? ",\n  " : "\n  ") << "{\"models\": [" << w.model1 << ", "
+        << w.model2 << "], \"verified_pairs\": " << w.num_pairs
+        << ", \"correspondences\": " << w.num_correspondences
+        << ", \"shared_tracks\": " << w.num_shared_tracks
+        << ", \"registered_images\": " << w.num_registered_images
+        << ", \"supporting_images\": " << w.num_supporting_images
+        << ", \"reason\": \"" << JsonEscaped(w.reason) << "\"}";
   }
   out << "\n]}\n";
   return out.str();
@@ -169,6 +190,8 @@ bool TmrMapperOptions::Check(std::string* error) const {
     return fail("num_threads must be -1 or >= 1");
   if (merge_min_shared_tracks < 3)
     return fail("merge_min_shared_tracks must be >= 3");
+  if (merge_register_images < 0)
+    return fail("Tmr.merge_register_images must be >= 0");
   if (!(task_ba_global_ratio > 1.0 && std::isfinite(task_ba_global_ratio)))
     return fail("Tmr.task_ba_global_ratio must be > 1");
   if (!(merge_refine_growth >= 1.0 && std::isfinite(merge_refine_growth)))

@@ -36,7 +36,11 @@ struct ModelAlignment {
   int num_shared_tracks = 0;
   int num_inliers = 0;
   int num_verified = 0;  // shared tracks of other images that fit
-  std::string reason;    // why the models stay apart
+  // AlignModelsByRegisteredImages: source images registered on the
+  // target's points, and those whose observations fit the similarity.
+  int num_registered_images = 0;
+  int num_supporting_images = 0;
+  std::string reason;  // why the models stay apart
 };
 
 // The paper's merge rule (Sec. 5): find the image of the source model with

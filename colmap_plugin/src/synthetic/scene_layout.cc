@@ -70,19 +70,60 @@ void AddPanorama(const Eigen::Vector2d& center, const std::string& part,
   }
 }
 
-// A building at `center` with a ring of cameras looking at it.
-void AddPlace(const Eigen::Vector2d& center, double yaw, int num_cameras,
-              const std::string& part, std::mt19937_64& rng,
-              SceneLayout* layout) {
+// Whether `xy` is within `margin` metres of the footprint of a box.
+bool NearBox(const Eigen::Vector2d& xy, double margin,
+             const std::vector<Box>& boxes) {
+  for (const Box& box : boxes) {
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const Eigen::Vector2d d = xy - box.center;
+    if (std::abs(c * d.x() + s * d.y()) < box.half_size.x() + margin &&
+        std::abs(-s * d.x() + c * d.y()) < box.half_size.y() + margin)
+      return true;
+  }
+  return false;
+}
+
+// A building at `center`.
+void AddBuilding(const Eigen::Vector2d& center, double yaw,
+                 std::mt19937_64& rng, SceneLayout* layout) {
   Box building;
   building.center = center;
   building.yaw = yaw;
   building.half_size = {10.0, 10.0, Uniform(rng, 5.0, 8.0)};
   layout->boxes.push_back(building);
+}
+
+// Whether another box than `own` stands between `xy` and `center`.
+bool ViewBlocked(const Eigen::Vector2d& xy, const Eigen::Vector2d& center,
+                 int own, const std::vector<Box>& boxes) {
+  for (int b = 0; b < static_cast<int>(boxes.size()); ++b) {
+    if (b != own && boxes[b].Blocks(At(xy, kCameraHeight), At(center, 3.0)))
+      return true;
+  }
+  return false;
+}
+
+// A ring of cameras of radius `ring_radius` around `center` (the box `own`),
+// looking at it; a position within 2 m of a box, or from which another box
+// hides the centre (a close-up of another place's wall that nothing else
+// sees), is drawn again.
+void AddRing(const Eigen::Vector2d& center, int own, int num_cameras,
+             double ring_radius, const std::string& part, std::mt19937_64& rng,
+             SceneLayout* layout) {
   for (int k = 0; k < num_cameras; ++k) {
-    const double angle = 2 * kPi * (k + Uniform(rng, -0.3, 0.3)) / num_cameras;
-    const Eigen::Vector2d xy =
-        center + (kRingRadius + Uniform(rng, -3, 3)) * Heading(angle);
+    Eigen::Vector2d xy;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      // Near the camera's slot first, then anywhere on the ring (a ring
+      // that crosses another place's building has no free slot there).
+      const double slot =
+          attempt < 20 ? k + Uniform(rng, -0.3, 0.3)
+                       : Uniform(rng, 0, static_cast<double>(num_cameras));
+      const double angle = 2 * kPi * slot / num_cameras;
+      xy = center + (ring_radius + Uniform(rng, -3, 3)) * Heading(angle);
+      if (!NearBox(xy, 2.0, layout->boxes) &&
+          !ViewBlocked(xy, center, own, layout->boxes))
+        break;
+    }
     const Eigen::Vector2d to_center = center - xy;
     const double heading =
         std::atan2(to_center.y(), to_center.x()) + Uniform(rng, -0.25, 0.25);
@@ -90,6 +131,16 @@ void AddPlace(const Eigen::Vector2d& center, double yaw, int num_cameras,
                                LookRotation(heading, Uniform(rng, 0.05, 0.2)),
                                part});
   }
+}
+
+// A building at `center` with a ring of cameras of radius `ring_radius`
+// looking at it.
+void AddPlace(const Eigen::Vector2d& center, double yaw, int num_cameras,
+              double ring_radius, const std::string& part, std::mt19937_64& rng,
+              SceneLayout* layout) {
+  AddBuilding(center, yaw, rng, layout);
+  AddRing(center, static_cast<int>(layout->boxes.size()) - 1, num_cameras,
+          ring_radius, part, rng, layout);
 }
 
 // Facade walls on both sides of a corridor from `from` to `to`.
@@ -113,8 +164,8 @@ void BuildPlaces(const SyntheticSceneOptions& o, std::mt19937_64& rng,
                  SceneLayout* layout) {
   for (int p = 0; p < o.num_places; ++p) {
     const Eigen::Vector2d center(p * o.place_distance, 0.0);
-    AddPlace(center, 0.0, o.cameras_per_place, "place" + std::to_string(p), rng,
-             layout);
+    AddPlace(center, 0.0, o.cameras_per_place, kRingRadius,
+             "place" + std::to_string(p), rng, layout);
     if (p == 0 || o.link_spacing <= 0) continue;
     const Eigen::Vector2d from(center.x() - o.place_distance + kRingRadius, 0);
     const Eigen::Vector2d to(center.x() - kRingRadius, 0);
@@ -126,8 +177,28 @@ void BuildPlaces(const SyntheticSceneOptions& o, std::mt19937_64& rng,
   // Unlinked places far off the line, beyond the range of every camera.
   for (int q = 0; q < o.num_unlinked_places; ++q) {
     const Eigen::Vector2d center(q * o.place_distance, 4 * o.place_distance);
-    AddPlace(center, Uniform(rng, 0, kPi / 2), o.cameras_per_place,
+    AddPlace(center, Uniform(rng, 0, kPi / 2), o.cameras_per_place, kRingRadius,
              "place" + std::to_string(o.num_places + q), rng, layout);
+  }
+}
+
+// Plazas on a grid (as square as num_places allows), plaza_distance apart,
+// each a building with a ring of plaza_radius: the rings overlap, so every
+// photo also sees the neighbouring plazas' buildings, and no link photos
+// are needed to join them.
+void BuildPlazas(const SyntheticSceneOptions& o, std::mt19937_64& rng,
+                 SceneLayout* layout) {
+  const int columns =
+      static_cast<int>(std::ceil(std::sqrt(static_cast<double>(o.num_places))));
+  std::vector<Eigen::Vector2d> centers;
+  for (int p = 0; p < o.num_places; ++p) {
+    centers.emplace_back((p % columns) * o.plaza_distance,
+                         (p / columns) * o.plaza_distance);
+    AddBuilding(centers.back(), Uniform(rng, 0, kPi / 2), rng, layout);
+  }
+  for (int p = 0; p < o.num_places; ++p) {
+    AddRing(centers[p], p, o.cameras_per_place, o.plaza_radius,
+            "plaza" + std::to_string(p), rng, layout);
   }
 }
 
@@ -264,6 +335,8 @@ SceneLayout BuildSceneLayout(const SyntheticSceneOptions& options,
   SceneLayout layout;
   if (options.family == "places") {
     BuildPlaces(options, rng, &layout);
+  } else if (options.family == "plazas") {
+    BuildPlazas(options, rng, &layout);
   } else if (options.family == "street") {
     BuildStreet(options, rng, &layout);
   } else {

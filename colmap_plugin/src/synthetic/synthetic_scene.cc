@@ -112,8 +112,10 @@ bool SyntheticSceneOptions::Check(std::string* error) const {
     if (error) *error = message;
     return false;
   };
-  if (family != "places" && family != "street" && family != "city") {
-    return fail("family must be places, street or city, not '" + family + "'");
+  if (family != "places" && family != "plazas" && family != "street" &&
+      family != "city") {
+    return fail("family must be places, plazas, street or city, not '" +
+                family + "'");
   }
   if (street_gap != "none" && street_gap != "removed" &&
       street_gap != "thinned") {
@@ -126,6 +128,10 @@ bool SyntheticSceneOptions::Check(std::string* error) const {
   }
   if (link_spacing < 0 || place_distance < 60) {
     return fail("need link_spacing >= 0 and place_distance >= 60");
+  }
+  // A plaza's building is 20 m wide; the rings must clear it.
+  if (plaza_distance < 25 || plaza_radius < 15) {
+    return fail("need plaza_distance >= 25 and plaza_radius >= 15");
   }
   if (street_length <= 0 ||
       !(0 <= gap_begin && gap_begin < gap_end && gap_end <= 1) ||

@@ -16,6 +16,11 @@ namespace tmr {
 //           line, consecutive ones joined by a corridor of cameras every
 //           link_spacing metres (0: no link), plus num_unlinked_places far
 //           away (the paper's Fig. 1: A and B weakly linked, C alone).
+//   plazas  num_places plazas (a building with a ring of cameras_per_place
+//           cameras of radius plaza_radius) on a grid, plaza_distance apart:
+//           the rings overlap heavily and there are no link cameras, so the
+//           scene is one well-connected place whose photos each see several
+//           buildings (a town centre photographed by many visitors).
 //   street  a straight street of cameras every camera_spacing metres with
 //           facades on both sides; the stretch [gap_begin, gap_end] (fraction
 //           of the length) is kept, removed (no link) or thinned (weak link),
@@ -24,7 +29,7 @@ namespace tmr {
 //           camera_spacing it is a well-connected scene that stock COLMAP
 //           builds as one model, with many blocks a large city for scaling.
 struct SyntheticSceneOptions {
-  // Scene family: "places", "street" or "city".
+  // Scene family: "places", "plazas", "street" or "city".
   std::string family = "places";
   // Seed of every random choice; the same options give the same database.
   uint64_t seed = 0;
@@ -39,6 +44,13 @@ struct SyntheticSceneOptions {
   double link_spacing = 3.0;
   // Distance between the centres of consecutive places (metres).
   double place_distance = 120.0;
+
+  // --- plazas (num_places and cameras_per_place as above) ---
+  // Distance between the centres of neighbouring plazas on the grid and the
+  // radius of each plaza's camera ring (metres): rings 120 m across, 45 m
+  // apart.
+  double plaza_distance = 45.0;
+  double plaza_radius = 60.0;
 
   // --- street ---
   // Length of the street (metres).

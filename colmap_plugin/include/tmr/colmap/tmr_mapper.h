@@ -53,6 +53,10 @@ struct TmrMapperOptions {
   bool fix_base_in_leaves = true;
   // tau of the merge rule (paper Sec. 5).
   int merge_min_shared_tracks = 12;
+  // A model that shares too few tracks with a scene for that rule is
+  // aligned by registering up to this many of its images on the scene's
+  // points (AlignModelsByRegisteredImages); 0: the track rule only.
+  int merge_register_images = 10;
   // Growth of a kernel or leaf task's model between two of COLMAP's global
   // adjustments (its ba_global_images_ratio and ba_global_points_ratio,
   // 1.1 in COLMAP). Every merged model gets a full global adjustment, so the
@@ -111,11 +115,27 @@ struct TmrTaskReport {
   bool reused = false;  // finished by an earlier, killed run (Tmr.resume)
 };
 
+// Two final models that verified pairs link but no merge rule joined: what
+// a user reads before adding photos between them.
+struct TmrWeakLink {
+  int model1 = 0;  // output model numbers, model1 < model2
+  int model2 = 0;
+  int num_pairs = 0;            // verified image pairs between them
+  int num_correspondences = 0;  // their verified matches
+  // The best try: shared tracks of the best source image, source images
+  // registered on the other model's points, and those that fit.
+  int num_shared_tracks = 0;
+  int num_registered_images = 0;
+  int num_supporting_images = 0;
+  std::string reason;  // why they stay apart
+};
+
 struct TmrMapperReport {
   int num_images = 0;
   std::vector<int>
       model_sizes;  // registered images per output model, largest first
   std::vector<TmrTaskReport> tasks;
+  std::vector<TmrWeakLink> weak_links;
   double partition_seconds = 0.0;
   double total_seconds = 0.0;
 };
