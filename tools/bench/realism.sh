@@ -74,6 +74,7 @@ declare -A SYNTH=(
   [synth_places]="--family places"
   [synth_street]="--family street --street_length 200"
   [synth_city]="--family city --city_blocks_x 1 --city_blocks_y 1"
+  [synth_plazas]="--family plazas --num_places 4 --cameras_per_place 60 --detection_probability 0.35 --match_probability 0.7 --match_angle_falloff_deg 12"
 )
 for name in "${!SYNTH[@]}"; do
   dir="$OUT/$name"

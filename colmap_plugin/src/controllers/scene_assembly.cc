@@ -7,6 +7,7 @@
 #include <colmap/sfm/incremental_mapper.h>
 
 #include <chrono>
+#include <limits>
 #include <unordered_set>
 
 #include "controllers/tmr_mapper_support.h"
@@ -30,13 +31,13 @@ std::string DescribeFit(const ModelAlignment& a) {
          std::to_string(a.num_shared_tracks) + " shared tracks fit";
 }
 
-// Names of the images the models register, except model `skip`.
+// Names of the images that the first `count` models register (all: every
+// model).
 std::unordered_set<std::string> HeldImageNames(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
-    int skip = -1) {
+    size_t count = std::numeric_limits<size_t>::max()) {
   std::unordered_set<std::string> held;
-  for (int i = 0; i < static_cast<int>(models.size()); ++i) {
-    if (i == skip) continue;
+  for (size_t i = 0; i < std::min(count, models.size()); ++i) {
     for (const colmap::image_t id : models[i]->RegImageIds())
       held.insert(models[i]->Image(id).Name());
   }
@@ -140,44 +141,39 @@ SceneAssembler::SceneAssembler(
   }
 }
 
-SceneAssembler::ModelLink SceneAssembler::Link(
-    const colmap::Reconstruction& a, const colmap::Reconstruction& b) const {
-  ModelLink link;
-  for (const colmap::image_t id : a.RegImageIds()) {
-    const auto it = image_links_.find(id);
-    if (it == image_links_.end()) continue;
-    for (const auto& [other, num_correspondences] : it->second) {
-      if (!b.ExistsImage(other) || !b.IsImageRegistered(other)) continue;
-      ++link.num_pairs;
-      link.num_correspondences += num_correspondences;
-    }
-  }
-  return link;
-}
-
-std::vector<std::shared_ptr<colmap::Reconstruction>>
-SceneAssembler::LinkedScenes(
+std::vector<SceneAssembler::ModelLink> SceneAssembler::Links(
     const colmap::Reconstruction& model,
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
   std::unordered_map<colmap::image_t, int> owner;
   for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
     for (const colmap::image_t id : scenes[i]->RegImageIds()) owner[id] = i;
   }
-  std::vector<int> matches(scenes.size(), 0);
+  std::vector<ModelLink> links(scenes.size());
   for (const colmap::image_t id : model.RegImageIds()) {
-    const auto links = image_links_.find(id);
-    if (links == image_links_.end()) continue;
-    for (const auto& [other, num_correspondences] : links->second) {
+    const auto partners = image_links_.find(id);
+    if (partners == image_links_.end()) continue;
+    for (const auto& [other, num_correspondences] : partners->second) {
       const auto it = owner.find(other);
-      if (it != owner.end()) matches[it->second] += num_correspondences;
+      if (it == owner.end()) continue;
+      ++links[it->second].num_pairs;
+      links[it->second].num_correspondences += num_correspondences;
     }
   }
+  return links;
+}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>>
+SceneAssembler::LinkedScenes(
+    const colmap::Reconstruction& model,
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  const std::vector<ModelLink> links = Links(model, scenes);
   std::vector<int> order;
   for (int i = 0; i < static_cast<int>(scenes.size()); ++i)
-    if (matches[i] > 0) order.push_back(i);
+    if (links[i].num_pairs > 0) order.push_back(i);
   // A stable sort keeps the larger scene first on a tie.
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return matches[a] > matches[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return links[a].num_correspondences > links[b].num_correspondences;
+  });
   std::vector<std::shared_ptr<colmap::Reconstruction>> linked;
   for (const int i : order) linked.push_back(scenes[i]);
   return linked;
@@ -210,21 +206,26 @@ ModelAlignment SceneAssembler::Align(
 
 std::vector<TmrWeakLink> SceneAssembler::WeakLinks(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
-  std::vector<TmrWeakLink> links;
-  for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
-    for (int j = i + 1; j < static_cast<int>(scenes.size()); ++j) {
-      const ModelLink link = Link(*scenes[j], *scenes[i]);
-      if (link.num_pairs == 0) continue;
+  std::vector<TmrWeakLink> weak_links;
+  for (int j = 1; j < static_cast<int>(scenes.size()); ++j) {
+    const std::vector<ModelLink> links = Links(*scenes[j], scenes);
+    for (int i = 0; i < j; ++i) {
+      if (links[i].num_pairs == 0) continue;
       const ModelAlignment a = Align(*scenes[i], *scenes[j]);
-      links.push_back({i, j, link.num_pairs, link.num_correspondences,
-                       a.num_shared_tracks, a.num_registered_images,
-                       a.num_supporting_images,
-                       a.success ? "they align now (after the last merge "
-                                   "round)"
-                                 : a.reason});
+      weak_links.push_back({i, j, links[i].num_pairs,
+                            links[i].num_correspondences, a.num_shared_tracks,
+                            a.num_registered_images, a.num_supporting_images,
+                            a.success
+                                ? "they align now (after the last refinement)"
+                                : a.reason});
     }
   }
-  return links;
+  std::sort(weak_links.begin(), weak_links.end(),
+            [](const TmrWeakLink& a, const TmrWeakLink& b) {
+              return std::make_pair(a.model1, a.model2) <
+                     std::make_pair(b.model1, b.model2);
+            });
+  return weak_links;
 }
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
@@ -352,9 +353,7 @@ void SceneAssembler::CompleteScenes(
                                                          held.end());
     // Larger scenes keep their images; smaller models offer theirs.
     std::unordered_set<colmap::image_t> held_elsewhere;
-    for (const std::string& name :
-         HeldImageNames(std::vector<std::shared_ptr<colmap::Reconstruction>>(
-             scenes->begin(), scenes->begin() + i))) {
+    for (const std::string& name : HeldImageNames(*scenes, i)) {
       if (const colmap::Image* image = cache_->FindImageWithName(name))
         held_elsewhere.insert(image->ImageId());
     }

@@ -149,13 +149,15 @@ class SceneAssembler {
       const colmap::Reconstruction& model,
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
 
-  // Verified image pairs between two models and their correspondences.
+  // Verified image pairs between `model` and each of `scenes`, and their
+  // matches.
   struct ModelLink {
     int num_pairs = 0;
     int num_correspondences = 0;
   };
-  ModelLink Link(const colmap::Reconstruction& a,
-                 const colmap::Reconstruction& b) const;
+  std::vector<ModelLink> Links(
+      const colmap::Reconstruction& model,
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
 
   // Every pair of `scenes` (the final models, in output order) that
   // verified pairs link: how strongly, and why Align keeps them apart.
