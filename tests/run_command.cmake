@@ -96,3 +96,29 @@ macro(score prefix models)
       --output_json ${WORK_DIR}/${prefix}.json)
   largest_model(${WORK_DIR}/${prefix}.json ${prefix})
 endmacro()
+
+# expect_fair_stock(PERCENT MAX_ROTATION): stops the script unless stock's
+# largest model (stock_* from score(stock ...)) holds PERCENT% of the images
+# with a median rotation error below MAX_ROTATION degrees: the scene is a
+# fair test.
+function(expect_fair_stock percent max_rotation)
+  math(EXPR needed "(${stock_images} * ${percent} + 99) / 100")
+  if(stock_registered LESS needed)
+    message(FATAL_ERROR "stock: registered ${stock_registered} < ${percent}% of ${stock_images}")
+  endif()
+  if(stock_rotation GREATER_EQUAL ${max_rotation})
+    message(FATAL_ERROR "stock: median rotation error ${stock_rotation} >= ${max_rotation} deg")
+  endif()
+endfunction()
+
+# expect_as_good_as_stock(PREFIX LABEL): stops the script unless the largest
+# model of PREFIX (score(PREFIX ...)) holds >= 98% of the images stock
+# registers, with a median rotation error no worse than stock's up to
+# bundle-adjustment noise (25% or 0.01 degrees, whichever is larger).
+function(expect_as_good_as_stock prefix label)
+  math(EXPR needed "(${stock_registered} * 98 + 99) / 100")
+  if(${prefix}_registered LESS needed)
+    message(FATAL_ERROR "${label}: registered ${${prefix}_registered} < 98% of stock's ${stock_registered}")
+  endif()
+  expect_rotation_no_worse(${${prefix}_rotation} ${stock_rotation} 125 10000 "${label}")
+endfunction()
