@@ -170,12 +170,15 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
 
 // A model adjusted whole gets rounds (COLMAP's IterativeGlobalRefinement):
 // the split tracks of the seam only fit after the first adjustment, are
-// merged then and adjusted again.
+// merged then and adjusted again; asked to (the last refinement of a
+// scene), the tracks the last round merged and the points it filtered are
+// adjusted once more.
 TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
   MergedModelAdjustment one_round;
   one_round.max_block_images = 0;
   MergedModelAdjustment rounds = one_round;
   rounds.max_refinements = 5;
+  rounds.adjust_after_last_change = true;
   const auto once = MisalignedHalves();
   const auto repeated = MisalignedHalves();
   const std::string report_once = RefineMergedModel(
@@ -186,6 +189,10 @@ TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
   EXPECT_EQ(report_once.find("round 2"), std::string::npos) << report_once;
   EXPECT_NE(report.find("round 2"), std::string::npos) << report;
   EXPECT_EQ(report.find("round 6"), std::string::npos) << report;
+  EXPECT_EQ(report_once.find("changed observations:"), std::string::npos)
+      << report_once;
+  EXPECT_NE(report.find("changed observations:"), std::string::npos)
+      << report;
   // More observations in fewer tracks, and poses no worse.
   EXPECT_LT(repeated->NumPoints3D(), once->NumPoints3D());
   const ModelEvaluation a = EvaluateReconstruction(*gt_, *once, {});

@@ -447,6 +447,7 @@ void SceneAssembler::Refine(
   const auto start = Clock::now();
   MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
   adjustment.only_images = only_images;
+  adjustment.adjust_after_last_change = !while_merging && only_images.empty();
   const std::string report = RefineMergedModel(
       cache_, ColmapOptions(o_.mapper, num_threads_), adjustment, scene);
   ReleaseFreedMemory();

@@ -293,6 +293,7 @@ std::string RefineMergedModel(
                              adjustment.longest_tracks_per_image == 0
                          ? adjustment.max_refinements
                          : 1;
+  size_t changed = 0;
   for (int round = 0; round < rounds; ++round) {
     const size_t num_observations = model->ComputeNumObservations();
     if (adjustment.enabled) {
@@ -300,13 +301,20 @@ std::string RefineMergedModel(
           (round > 0 ? "; round " + std::to_string(round + 1) + ": " : "") +
           AdjustMergedBundle(mapper_options, adjustment, &mapper);
     }
-    size_t changed = mapper.CompleteAndMergeTracks(triangulation);
+    changed = mapper.CompleteAndMergeTracks(triangulation);
     const size_t round_filtered = mapper.FilterPoints(mapper_options.Mapper());
     filtered += round_filtered;
     changed += round_filtered;
     if (num_observations == 0 ||
         changed < adjustment.max_refinement_change * num_observations)
       break;
+  }
+  if (adjustment.enabled && adjustment.adjust_after_last_change &&
+      rounds > 1 && changed > 0) {
+    report += "; after " + std::to_string(changed) +
+              " changed observations: " +
+              AdjustMergedBundle(mapper_options, adjustment, &mapper);
+    filtered += mapper.FilterPoints(mapper_options.Mapper());
   }
   mapper.EndReconstruction(/*discard=*/false);
   return report + (report.empty() ? "" : "; ") + std::to_string(filtered) +

@@ -117,6 +117,14 @@ struct MergedModelAdjustment {
   // than one round (not by blocks, longest tracks or only_images).
   int max_refinements = 1;
   double max_refinement_change = 0.0005;
+  // With rounds as above: when the last round's track merging and
+  // filtering changed anything, the model is adjusted once more (then
+  // filtered, not re-linked), so that the model written was adjusted after
+  // its last change. COLMAP's refinement stops with that change
+  // unadjusted: on plazas8 (948 images) that left 0.206 deg median
+  // rotation error, one more adjustment of the written model 0.078 deg
+  // (stock: 0.069).
+  bool adjust_after_last_change = false;
 };
 
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
