@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything tmr needs on a Debian bookworm machine and builds COLMAP 3.10
 # from Debian's (trixie) source package into a fixed prefix outside the checkout.
+# With TMR_WITH_COLMAP4=1 it also builds PoseLib 2.0.5 and COLMAP 4.1.1 (issue 24,
+# the port under way; tmr itself still builds against 3.10).
 #
 # Idempotent: a second run on the same machine checks a few stamps and exits in
 # seconds. Needs root (or sudo) for apt-get.
@@ -8,6 +10,10 @@
 # Environment:
 #   TMR_DEPS_PREFIX   where COLMAP is installed (default /opt/tmr-deps)
 #   TMR_JOBS          parallel build jobs (default 2)
+#   TMR_WITH_COLMAP4  1: also PoseLib 2.0.5 and COLMAP 4.1.1 (default 0)
+#   TMR_VENDOR_DIR    source archives of those two with SHA256SUMS (default: the
+#                     checkout's ../shared/vendor when it exists; otherwise the
+#                     repositories' tags are cloned and their commits checked)
 set -euo pipefail
 
 PREFIX="${TMR_DEPS_PREFIX:-/opt/tmr-deps}"
@@ -27,6 +33,11 @@ PACKAGES=(
   libboost-system-dev libsuitesparse-dev libgtest-dev libgmock-dev
   libopencv-dev nlohmann-json3-dev clang python3 iproute2 procps
 )
+WITH_COLMAP4="${TMR_WITH_COLMAP4:-0}"
+# COLMAP 4.1.1 needs these besides the above (../shared/vendor/README.md).
+if [[ $WITH_COLMAP4 == 1 ]]; then
+  PACKAGES+=(libfaiss-dev libopenimageio-dev openimageio-tools libglew-dev)
+fi
 # The Slurm test starts its own single-node Slurm from these
 # (tests/slurm/local_slurm.sh); the packages' own services are not started.
 # Optional: without them that one test is skipped.
@@ -82,10 +93,11 @@ else
 fi
 
 # --- 2. COLMAP 3.10 ----------------------------------------------------------
+install_colmap310() {
 if [[ -f "$STAMP" && -x "${COLMAP_PREFIX}/bin/colmap" &&
       -f "${COLMAP_PREFIX}/share/colmap/colmap-config.cmake" ]]; then
   log "COLMAP ${COLMAP_VERSION}: already installed in ${COLMAP_PREFIX}"
-  exit 0
+  return 0
 fi
 
 SRC_DIR="${PREFIX}/src"
@@ -137,3 +149,79 @@ cmake --install "$BUILD_ROOT/build" >"$BUILD_ROOT/install.log" 2>&1 ||
 date -u +%FT%TZ >"$STAMP"
 rm -rf "$BUILD_ROOT/build"
 log "COLMAP ${COLMAP_VERSION} installed in ${COLMAP_PREFIX} ($(( $(date +%s) - start )) s build)"
+}
+
+# --- 3. PoseLib 2.0.5 and COLMAP 4.1.1 (TMR_WITH_COLMAP4=1) ---------------------
+COLMAP4_VERSION="4.1.1"
+COLMAP4_COMMIT="a0d785fba74b2664f31edc4a29026a8b27c00f67"
+POSELIB_VERSION="2.0.5"
+POSELIB_COMMIT="7e9f5f53372e43f89655040d4dfc4a00e5ace11c"
+COLMAP4_PREFIX="${PREFIX}/colmap-${COLMAP4_VERSION}"
+CHECKOUT="$(cd "$(dirname "$0")/.." && pwd)"
+VENDOR_DIR="${TMR_VENDOR_DIR:-${CHECKOUT}/../shared/vendor}"
+
+# Unpacks NAME-VERSION into $SRC_DIR from the vendor archive (checksum checked)
+# or clones the tag and checks its commit. Args: name version tag commit url.
+fetch_source() {
+  local name=$1 version=$2 tag=$3 commit=$4 url=$5
+  local tree="${SRC_DIR}/${name}-${version}" archive="${VENDOR_DIR}/${name}-${version}.tar.gz"
+  rm -rf "$tree"
+  if [[ -f "$archive" ]]; then
+    (cd "$VENDOR_DIR" && grep " ${name}-${version}.tar.gz\$" SHA256SUMS | sha256sum -c --status) ||
+      die "sha256 mismatch for $archive (or no line for it in ${VENDOR_DIR}/SHA256SUMS)"
+    tar -xzf "$archive" -C "$SRC_DIR"
+    log "${name} ${version}: from ${archive} (sha256 ok)"
+  else
+    git clone -q --depth 1 --branch "$tag" "$url" "$tree" 2>/tmp/tmr-git.log ||
+      { tail -n 5 /tmp/tmr-git.log >&2; die "cannot clone $url at $tag and no archive at $archive"; }
+    [[ $(git -C "$tree" rev-parse HEAD) == "$commit" ]] ||
+      die "$url tag $tag is not commit $commit"
+    log "${name} ${version}: cloned tag ${tag} (commit checked)"
+  fi
+}
+
+install_colmap4() {
+  local stamp="${COLMAP4_PREFIX}/.tmr-installed"
+  if [[ -f "$stamp" && -x "${COLMAP4_PREFIX}/bin/colmap" ]]; then
+    log "COLMAP ${COLMAP4_VERSION}: already installed in ${COLMAP4_PREFIX}"
+    return 0
+  fi
+  SRC_DIR="${PREFIX}/src"
+  $SUDO mkdir -p "$SRC_DIR"
+  $SUDO chown "$(id -u):$(id -g)" "$PREFIX" "$SRC_DIR"
+  local start
+  start=$(date +%s)
+  fetch_source PoseLib "$POSELIB_VERSION" "v${POSELIB_VERSION}" "$POSELIB_COMMIT" \
+    https://github.com/PoseLib/PoseLib.git
+  local poselib="${SRC_DIR}/PoseLib-${POSELIB_VERSION}"
+  log "building PoseLib ${POSELIB_VERSION} into ${COLMAP4_PREFIX}"
+  { cmake -S "$poselib" -B "$poselib/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DMARCH_NATIVE=OFF -DCMAKE_INSTALL_PREFIX="$COLMAP4_PREFIX" &&
+    cmake --build "$poselib/build" -j "$JOBS" && cmake --install "$poselib/build"; } \
+    >"${SRC_DIR}/poselib-build.log" 2>&1 ||
+    { tail -n 30 "${SRC_DIR}/poselib-build.log" >&2; die "PoseLib build failed"; }
+  rm -rf "$poselib"
+  fetch_source colmap "$COLMAP4_VERSION" "$COLMAP4_VERSION" "$COLMAP4_COMMIT" \
+    https://github.com/colmap/colmap.git
+  local tree="${SRC_DIR}/colmap-${COLMAP4_VERSION}"
+  log "configuring COLMAP ${COLMAP4_VERSION} (Release; no GUI, CUDA, ONNX, CGAL, MVS, downloads, tests)"
+  cmake -S "$tree" -B "$tree/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$COLMAP4_PREFIX" -DCMAKE_INSTALL_PREFIX="$COLMAP4_PREFIX" \
+    -DFETCH_POSELIB=OFF -DFETCH_FAISS=OFF -DFETCH_ONNX=OFF -DONNX_ENABLED=OFF \
+    -DGUI_ENABLED=OFF -DCUDA_ENABLED=OFF -DDOWNLOAD_ENABLED=OFF -DCGAL_ENABLED=OFF \
+    -DMVS_ENABLED=OFF -DTESTS_ENABLED=OFF >"$tree/configure.log" 2>&1 ||
+    { tail -n 30 "$tree/configure.log" >&2; die "COLMAP ${COLMAP4_VERSION} configure failed"; }
+  log "building COLMAP ${COLMAP4_VERSION} with ${JOBS} jobs (about 15 minutes on 2 cores)"
+  cmake --build "$tree/build" -j "$JOBS" >"$tree/build.log" 2>&1 ||
+    { tail -n 30 "$tree/build.log" >&2; die "COLMAP ${COLMAP4_VERSION} build failed (log: $tree/build.log)"; }
+  cmake --install "$tree/build" >"$tree/install.log" 2>&1 ||
+    die "COLMAP ${COLMAP4_VERSION} install failed"
+  "${COLMAP4_PREFIX}/bin/colmap" help >/dev/null 2>&1 ||
+    die "installed colmap ${COLMAP4_VERSION} does not run"
+  date -u +%FT%TZ >"$stamp"
+  rm -rf "$tree"
+  log "COLMAP ${COLMAP4_VERSION} installed in ${COLMAP4_PREFIX} ($(( $(date +%s) - start )) s build)"
+}
+
+install_colmap310
+if [[ $WITH_COLMAP4 == 1 ]]; then install_colmap4; fi

@@ -61,8 +61,11 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
-// (sfm/model_merging.h), then COLMAP's mapper completes them with the images
-// no model holds, and maps from scratch what is still left.
+// (sfm/model_merging.h) or by images registered on the scene's points
+// (sfm/registration_alignment.h), then COLMAP's mapper completes them with the images
+// no model holds, and maps from scratch what is still left. How two models
+// are linked and aligned (Links, LinkedScenes, Align, WeakLinks) is in
+// scene_links.cc.
 class SceneAssembler {
  public:
   // COLMAP's mapper adjusts a model globally when it has grown by 10%
