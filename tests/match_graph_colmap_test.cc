@@ -201,7 +201,7 @@ TEST_F(MatchGraphColmapTest, ReadsDatabaseThatColmapHoldsOpen) {
   TwoViewGeometry geometry;
   geometry.config = TwoViewGeometry::CALIBRATED;
   geometry.inlier_matches = Diagonal(0, 25);
-  database->DeleteInlierMatches(1, 4);  // was DEGENERATE
+  database->DeleteTwoViewGeometry(1, 4);  // was DEGENERATE
   database->WriteTwoViewGeometry(1, 4, geometry);
   ASSERT_TRUE(fs::exists(path_.string() + "-wal"));
   const MatchGraph graph = ReadMatchGraph(path_.string());
@@ -233,24 +233,13 @@ TEST_F(MatchGraphColmapTest, ReadsColmap38Schema) {
   EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
 }
 
-TEST_F(MatchGraphColmapTest, ReadsColmap312Schema) {
+// COLMAP 4's schema with a rig and a frame (the tables 3.12 introduced).
+TEST_F(MatchGraphColmapTest, ReadsRigsAndFrames) {
   WriteHandMadeDatabase();
   ExecSql(path_,
-          "CREATE TABLE rigs(rig_id INTEGER PRIMARY KEY AUTOINCREMENT NOT "
-          "NULL, ref_sensor_id INTEGER NOT NULL, ref_sensor_type INTEGER NOT "
-          "NULL);"
-          "CREATE TABLE rig_sensors(rig_id INTEGER NOT NULL, sensor_id "
-          "INTEGER NOT NULL, sensor_type INTEGER NOT NULL, sensor_from_rig "
-          "BLOB);"
-          "CREATE TABLE frames(frame_id INTEGER PRIMARY KEY AUTOINCREMENT NOT "
-          "NULL, rig_id INTEGER NOT NULL);"
-          "CREATE TABLE frame_data(frame_id INTEGER NOT NULL, data_id INTEGER "
-          "NOT NULL, sensor_id INTEGER NOT NULL, sensor_type INTEGER NOT "
-          "NULL);"
           "INSERT INTO rigs VALUES(1, 1, 0);"
           "INSERT INTO frames VALUES(1, 1);"
-          "INSERT INTO frame_data VALUES(1, 1, 1, 0);"
-          "PRAGMA user_version = 3012;");
+          "INSERT INTO frame_data VALUES(1, 1, 1, 0);");
   EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
 }
 

@@ -3,6 +3,7 @@
 
 #include <colmap/controllers/feature_extraction.h>
 #include <colmap/controllers/feature_matching.h>
+#include <colmap/feature/sift.h>
 #include <colmap/sensor/models.h>
 #include <sqlite3.h>
 

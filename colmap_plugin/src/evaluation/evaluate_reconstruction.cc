@@ -4,6 +4,7 @@
 #include <colmap/estimators/alignment.h>
 #include <colmap/estimators/solvers/similarity_transform.h>
 #include <colmap/geometry/sim3.h>
+#include <colmap/math/math.h>
 #include <colmap/optim/loransac.h>
 
 #include <algorithm>

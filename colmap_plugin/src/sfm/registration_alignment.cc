@@ -177,9 +177,9 @@ bool RefineOnObservations(const colmap::Reconstruction& target,
                           const colmap::Reconstruction& source,
                           const std::vector<RegisteredImage>& registered,
                           double max_px, colmap::Sim3d* source_from_target) {
-  Eigen::Quaterniond rotation = source_from_target->rotation;
-  Eigen::Vector3d translation = source_from_target->translation;
-  double log_scale = std::log(source_from_target->scale);
+  Eigen::Quaterniond rotation = source_from_target->rotation();
+  Eigen::Vector3d translation = source_from_target->translation();
+  double log_scale = std::log(source_from_target->scale());
   ceres::Problem problem;
   int num_residuals = 0;
   for (const RegisteredImage& r : registered) {
