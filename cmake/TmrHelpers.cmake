@@ -61,3 +61,23 @@ function(tmr_add_test name)
     PROPERTIES LABELS "${ARG_LABELS}"
     DISCOVERY_TIMEOUT 60)
 endfunction()
+
+# tmr_find_colmap(MIN_VERSION MODE): find_package(COLMAP) without a version
+# (COLMAP's version file accepts only its exact version), then COLMAP_FOUND
+# only for MIN_VERSION or newer. MODE ON: an error otherwise; AUTO: a note.
+macro(tmr_find_colmap min_version mode)
+  if("${mode}" STREQUAL "ON")
+    find_package(COLMAP REQUIRED)
+  else()
+    find_package(COLMAP QUIET)
+  endif()
+  if(COLMAP_FOUND AND COLMAP_VERSION VERSION_LESS ${min_version})
+    set(_tmr_colmap_message "COLMAP ${COLMAP_VERSION} found in ${COLMAP_DIR}, "
+        "tmr needs ${min_version} or newer (tools/setup_dependencies.sh builds 4.1.1)")
+    if("${mode}" STREQUAL "ON")
+      message(FATAL_ERROR ${_tmr_colmap_message})
+    endif()
+    message(STATUS ${_tmr_colmap_message})
+    set(COLMAP_FOUND FALSE)
+  endif()
+endmacro()

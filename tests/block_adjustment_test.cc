@@ -35,9 +35,12 @@ class BlockAdjustmentTest : public ::testing::Test {
     std::string error;
     dir_ = WriteTestScene("block_adjustment_test", options, &error);
     ASSERT_FALSE(dir_.empty()) << error;
-    colmap::Database database((dir_ / "database.db").string());
+    colmap::DatabaseCache::Options cache_options;
+    cache_options.min_num_matches = 15;
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
-        colmap::DatabaseCache::Create(database, 15, false, {}));
+        colmap::DatabaseCache::Create(
+            *colmap::Database::Open((dir_ / "database.db").string()),
+            cache_options));
     gt_ = new colmap::Reconstruction(Matched(
         ReadModel((dir_ / "gt").string()), *(*cache_)->CorrespondenceGraph()));
   }
@@ -54,12 +57,9 @@ class BlockAdjustmentTest : public ::testing::Test {
       const colmap::Reconstruction& model,
       const colmap::CorrespondenceGraph& graph) {
     colmap::Reconstruction matched;
-    for (const auto& [camera_id, camera] : model.Cameras())
-      matched.AddCamera(camera);
     for (const auto& [image_id, image] : model.Images()) {
-      if (!graph.ExistsImage(image_id)) continue;
-      matched.AddImage(ImageWithoutPoints(image));
-      matched.RegisterImage(image_id);
+      if (graph.ExistsImage(image_id))
+        AddImageWithoutPoints(model, image_id, image.CamFromWorld(), &matched);
     }
     for (const auto& [point_id, point] : model.Points3D()) {
       colmap::Track track;
@@ -140,7 +140,7 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
   adjustments[2].longest_tracks_per_image = 250;
   for (int i = 0; i < kRuns; ++i) {
     const auto model = MisalignedHalves();
-    reports[i] = RefineMergedModel(*cache_, colmap::IncrementalMapperOptions(),
+    reports[i] = RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(),
                                    adjustments[i], model);
     after[i] = EvaluateReconstruction(*gt_, *model, {});
     EXPECT_EQ(after[i].num_registered_images, gt_->NumRegImages());
@@ -182,9 +182,9 @@ TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
   const auto once = MisalignedHalves();
   const auto repeated = MisalignedHalves();
   const std::string report_once = RefineMergedModel(
-      *cache_, colmap::IncrementalMapperOptions(), one_round, once);
+      *cache_, colmap::IncrementalPipelineOptions(), one_round, once);
   const std::string report = RefineMergedModel(
-      *cache_, colmap::IncrementalMapperOptions(), rounds, repeated);
+      *cache_, colmap::IncrementalPipelineOptions(), rounds, repeated);
   std::cout << report << "\n";
   EXPECT_EQ(report_once.find("round 2"), std::string::npos) << report_once;
   EXPECT_NE(report.find("round 2"), std::string::npos) << report;
@@ -220,8 +220,8 @@ TEST_F(BlockAdjustmentTest, ALateJoinAdjustsOnlyTheImagesThatJoined) {
                                  Eigen::Vector3d(0.02, -0.01, 0.015)),
                  model.get());
   auto rotation_error_deg = [&](colmap::image_t id) {
-    return gt_->Image(id).CamFromWorld().rotation.angularDistance(
-               model->Image(id).CamFromWorld().rotation) *
+    return gt_->Image(id).CamFromWorld().rotation().angularDistance(
+               model->Image(id).CamFromWorld().rotation()) *
            180.0 / M_PI;
   };
   double before = 0;
@@ -229,7 +229,7 @@ TEST_F(BlockAdjustmentTest, ALateJoinAdjustsOnlyTheImagesThatJoined) {
   MergedModelAdjustment adjustment;
   adjustment.only_images = joined;
   const std::string report = RefineMergedModel(
-      *cache_, colmap::IncrementalMapperOptions(), adjustment, model);
+      *cache_, colmap::IncrementalPipelineOptions(), adjustment, model);
   EXPECT_NE(report.find("block of " + std::to_string(joined.size())),
             std::string::npos)
       << report;
@@ -241,11 +241,11 @@ TEST_F(BlockAdjustmentTest, ALateJoinAdjustsOnlyTheImagesThatJoined) {
   EXPECT_LT(after, 0.25 * before);
   for (const colmap::image_t id : ids) {
     if (group.count(id)) continue;
-    const colmap::Rigid3d& pose = model->Image(id).CamFromWorld();
-    const colmap::Rigid3d& truth = gt_->Image(id).CamFromWorld();
+    const colmap::Rigid3d pose = model->Image(id).CamFromWorld();
+    const colmap::Rigid3d truth = gt_->Image(id).CamFromWorld();
     // Held: unchanged but for the rotation's normalisation.
-    EXPECT_LT(pose.rotation.angularDistance(truth.rotation), 1e-12) << id;
-    EXPECT_LT((pose.translation - truth.translation).norm(), 1e-12) << id;
+    EXPECT_LT(pose.rotation().angularDistance(truth.rotation()), 1e-12) << id;
+    EXPECT_LT((pose.translation() - truth.translation()).norm(), 1e-12) << id;
   }
 }
 

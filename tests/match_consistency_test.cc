@@ -49,10 +49,11 @@ class MatchConsistencyTest : public ::testing::Test {
 };
 
 TEST_F(MatchConsistencyTest, GroundTruthIsConsistent) {
-  const colmap::Database database(Database());
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(Database());
   const MatchConsistencyOptions options;
   const MatchConsistency c = CheckMatchConsistency(
-      ReadModel((dir_ / "gt").string()), database, options);
+      ReadModel((dir_ / "gt").string()), *database, options);
   EXPECT_GT(c.num_matches, 10000);
   EXPECT_GT(c.num_pairs, 50);
   EXPECT_LE(c.InconsistentShare(), 0.001);
@@ -61,21 +62,22 @@ TEST_F(MatchConsistencyTest, GroundTruthIsConsistent) {
 }
 
 TEST_F(MatchConsistencyTest, AGroupPlacedWronglyIsInconsistent) {
-  const colmap::Database database(Database());
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(Database());
   const MatchConsistencyOptions options;
   // A block turned by 3 degrees and shifted by a tenth of the place.
   const colmap::Rigid3d moved(
       Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
       Eigen::Vector3d(1, -0.5, 0.2));
   const MatchConsistency c =
-      CheckMatchConsistency(MoveHalf(moved), database, options);
+      CheckMatchConsistency(MoveHalf(moved), *database, options);
   EXPECT_GT(c.num_inconsistent_pairs, options.max_inconsistent_pairs);
   EXPECT_GT(c.InconsistentShare(), options.max_inconsistent_share);
   EXPECT_FALSE(c.IsConsistent(options));
   // Its tracks still agree with its poses: only the matches across the
   // split are contradicted.
   const MatchConsistency unmoved =
-      CheckMatchConsistency(MoveHalf(colmap::Rigid3d()), database, options);
+      CheckMatchConsistency(MoveHalf(colmap::Rigid3d()), *database, options);
   EXPECT_TRUE(unmoved.IsConsistent(options));
 }
 
@@ -98,7 +100,7 @@ TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
   strict.max_reprojection_error = 0.01;
   strict.max_inconsistent_share = 0;
   strict.max_inconsistent_pairs = 0;
-  colmap::IncrementalMapperOptions mapper;
+  colmap::IncrementalPipelineOptions mapper;
   mapper.num_threads = 1;
   const std::string task_db = (dir_ / "task.db").string();
   fs::copy_file(Database(), task_db, fs::copy_options::overwrite_existing);

@@ -90,24 +90,25 @@ class MatchGraphColmapTest : public ::testing::Test {
         {1, 4, Diagonal(0, 25), TwoViewGeometry::DEGENERATE},
         {2, 4, Diagonal(30, 18, -5), TwoViewGeometry::PLANAR},
     };
-    colmap::Database database(path_.string());
+    const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(path_.string());
     const colmap::camera_t camera_id =
-        database.WriteCamera(colmap::Camera::CreateFromModelName(
+        database->WriteCamera(colmap::Camera::CreateFromModelName(
             colmap::kInvalidCameraId, "SIMPLE_RADIAL", 500, 640, 480));
     const int num_keypoints[] = {50, 60, 70, 50};
     for (int i = 0; i < 4; ++i) {
       colmap::Image image;
       image.SetName("image" + std::to_string(i + 1) + ".jpg");
       image.SetCameraId(camera_id);
-      const colmap::image_t id = database.WriteImage(image);
+      const colmap::image_t id = database->WriteImage(image);
       ASSERT_EQ(id, static_cast<colmap::image_t>(i + 1));
-      database.WriteKeypoints(id, colmap::FeatureKeypoints(num_keypoints[i]));
+      database->WriteKeypoints(id, colmap::FeatureKeypoints(num_keypoints[i]));
     }
     for (const Pair& pair : pairs_) {
       TwoViewGeometry geometry;
       geometry.config = pair.config;
       geometry.inlier_matches = pair.matches;
-      database.WriteTwoViewGeometry(pair.id1, pair.id2, geometry);
+      database->WriteTwoViewGeometry(pair.id1, pair.id2, geometry);
     }
   }
 
@@ -195,12 +196,13 @@ TEST_F(MatchGraphColmapTest, DatabaseIsByteIdenticalAfterReading) {
 // -wal file; the reader must see them.
 TEST_F(MatchGraphColmapTest, ReadsDatabaseThatColmapHoldsOpen) {
   WriteHandMadeDatabase();
-  colmap::Database database(path_.string());
+  const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(path_.string());
   TwoViewGeometry geometry;
   geometry.config = TwoViewGeometry::CALIBRATED;
   geometry.inlier_matches = Diagonal(0, 25);
-  database.DeleteInlierMatches(1, 4);  // was DEGENERATE
-  database.WriteTwoViewGeometry(1, 4, geometry);
+  database->DeleteTwoViewGeometry(1, 4);  // was DEGENERATE
+  database->WriteTwoViewGeometry(1, 4, geometry);
   ASSERT_TRUE(fs::exists(path_.string() + "-wal"));
   const MatchGraph graph = ReadMatchGraph(path_.string());
   EXPECT_EQ(graph.NumPairs(), 4);
@@ -231,24 +233,13 @@ TEST_F(MatchGraphColmapTest, ReadsColmap38Schema) {
   EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
 }
 
-TEST_F(MatchGraphColmapTest, ReadsColmap312Schema) {
+// COLMAP 4's schema with a rig and a frame (the tables 3.12 introduced).
+TEST_F(MatchGraphColmapTest, ReadsRigsAndFrames) {
   WriteHandMadeDatabase();
   ExecSql(path_,
-          "CREATE TABLE rigs(rig_id INTEGER PRIMARY KEY AUTOINCREMENT NOT "
-          "NULL, ref_sensor_id INTEGER NOT NULL, ref_sensor_type INTEGER NOT "
-          "NULL);"
-          "CREATE TABLE rig_sensors(rig_id INTEGER NOT NULL, sensor_id "
-          "INTEGER NOT NULL, sensor_type INTEGER NOT NULL, sensor_from_rig "
-          "BLOB);"
-          "CREATE TABLE frames(frame_id INTEGER PRIMARY KEY AUTOINCREMENT NOT "
-          "NULL, rig_id INTEGER NOT NULL);"
-          "CREATE TABLE frame_data(frame_id INTEGER NOT NULL, data_id INTEGER "
-          "NOT NULL, sensor_id INTEGER NOT NULL, sensor_type INTEGER NOT "
-          "NULL);"
           "INSERT INTO rigs VALUES(1, 1, 0);"
           "INSERT INTO frames VALUES(1, 1);"
-          "INSERT INTO frame_data VALUES(1, 1, 1, 0);"
-          "PRAGMA user_version = 3012;");
+          "INSERT INTO frame_data VALUES(1, 1, 1, 0);");
   EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
 }
 
@@ -256,33 +247,33 @@ TEST_F(MatchGraphColmapTest, ReadsColmap312Schema) {
 // each 3D point; n_i and n_ij must agree with COLMAP's own reading of them.
 TEST_F(MatchGraphColmapTest, SynthesizedDatasetAgreesWithColmapReader) {
   {
-    colmap::Database database(path_.string());
+    const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(path_.string());
     colmap::SyntheticDatasetOptions options;
-    options.num_cameras = 3;
-    options.num_images = 12;
+    options.num_rigs = 3;
+    options.num_cameras_per_rig = 1;
+    options.num_frames_per_rig = 4;
     options.num_points3D = 300;
     options.num_points2D_without_point3D = 40;
     colmap::Reconstruction reconstruction;
-    colmap::SynthesizeDataset(options, &reconstruction, &database);
+    colmap::SynthesizeDataset(options, &reconstruction, database.get());
   }
   const MatchGraph graph = ReadMatchGraph(path_.string());
   ASSERT_EQ(graph.NumImages(), 12);
 
-  colmap::Database database(path_.string());
-  std::vector<colmap::image_pair_t> pair_ids;
-  std::vector<TwoViewGeometry> geometries;
-  database.ReadTwoViewGeometries(&pair_ids, &geometries);
+  const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(path_.string());
   std::map<colmap::image_t, std::set<colmap::point2D_t>> used;
   std::map<std::pair<int, int>, int> inliers;
-  for (size_t k = 0; k < pair_ids.size(); ++k) {
-    if (geometries[k].inlier_matches.size() < 15) continue;
-    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_ids[k]);
-    for (const FeatureMatch& m : geometries[k].inlier_matches) {
+  for (const auto& [pair_id, geometry] : database->ReadTwoViewGeometries()) {
+    if (geometry.inlier_matches.size() < 15) continue;
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    for (const FeatureMatch& m : geometry.inlier_matches) {
       used[id1].insert(m.point2D_idx1);
       used[id2].insert(m.point2D_idx2);
     }
     inliers[{graph.FindImageIndex(id1), graph.FindImageIndex(id2)}] =
-        geometries[k].inlier_matches.size();
+        geometry.inlier_matches.size();
   }
   ASSERT_EQ(graph.NumPairs(), static_cast<int>(inliers.size()));
   for (const MatchGraphPair& pair : graph.pairs) {
@@ -290,7 +281,7 @@ TEST_F(MatchGraphColmapTest, SynthesizedDatasetAgreesWithColmapReader) {
   }
   for (const MatchGraphImage& image : graph.images) {
     EXPECT_EQ(image.num_keypoints,
-              static_cast<int>(database.NumKeypointsForImage(image.image_id)));
+              static_cast<int>(database->NumKeypointsForImage(image.image_id)));
     EXPECT_EQ(image.num_matched_keypoints,
               static_cast<int>(used[image.image_id].size()));
     EXPECT_LT(image.num_matched_keypoints, image.num_keypoints);

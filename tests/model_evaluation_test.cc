@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
+#include "sfm/model_merging.h"
 #include "test_scene.h"
 
 namespace tmr {
@@ -73,14 +74,15 @@ TEST_F(ModelEvaluationTest, DisplacedPartIsAWrongMerge) {
       Eigen::AngleAxisd(0.349, Eigen::Vector3d::UnitZ()));
   int moved = 0;
   for (const colmap::image_t id : copy.RegImageIds()) {
-    colmap::Image& image = copy.Image(id);
+    const colmap::Image& image = copy.Image(id);
     if (image.Name().rfind("place1/", 0) != 0) continue;
     // New world-from-camera: turn about the origin, then shift.
     const colmap::Rigid3d world_from_cam =
         colmap::Inverse(image.CamFromWorld());
-    const colmap::Rigid3d moved_pose(turn * world_from_cam.rotation,
-                                     turn * world_from_cam.translation + shift);
-    image.CamFromWorld() = colmap::Inverse(moved_pose);
+    const colmap::Rigid3d moved_pose(
+        turn * world_from_cam.rotation(),
+        turn * world_from_cam.translation() + shift);
+    SetPoseAndRegister(id, colmap::Inverse(moved_pose), &copy);
     ++moved;
   }
   ASSERT_EQ(moved, 30);
@@ -107,7 +109,8 @@ TEST_F(ModelEvaluationTest, PartialModelIsScoredOnCommonImages) {
   for (const colmap::image_t id : part.RegImageIds()) {
     if (part.Image(id).Name().rfind("place0/", 0) != 0) drop.push_back(id);
   }
-  for (const colmap::image_t id : drop) part.DeRegisterImage(id);
+  for (const colmap::image_t id : drop)
+    part.DeRegisterFrame(part.Image(id).FrameId());
   const ModelEvaluation e = EvaluateReconstruction(*gt_, part, {});
   EXPECT_EQ(e.num_registered_images, 30);
   EXPECT_EQ(e.num_common_images, 30);

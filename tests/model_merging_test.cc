@@ -38,9 +38,12 @@ class ModelMergingTest : public ::testing::Test {
     dir_ = WriteTestScene("model_merging_test", options, &error);
     ASSERT_FALSE(dir_.empty()) << error;
     gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
-    colmap::Database database((dir_ / "database.db").string());
+    colmap::DatabaseCache::Options cache_options;
+    cache_options.min_num_matches = 15;
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
-        colmap::DatabaseCache::Create(database, 15, false, {}));
+        colmap::DatabaseCache::Create(
+            *colmap::Database::Open((dir_ / "database.db").string()),
+            cache_options));
   }
   static void TearDownTestSuite() {
     delete gt_;
@@ -54,7 +57,7 @@ class ModelMergingTest : public ::testing::Test {
     colmap::Reconstruction model = *gt_;
     for (const colmap::image_t id : gt_->RegImageIds()) {
       if (std::find(images.begin(), images.end(), id) == images.end())
-        model.DeRegisterImage(id);
+        model.DeRegisterFrame(model.Image(id).FrameId());
     }
     return model;
   }
@@ -148,11 +151,13 @@ TEST_F(ModelMergingTest, ASourceWronglyPutTogetherDoesNotAlignByImages) {
   colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
   for (size_t i = half; i < place.size(); ++i) {
     const double angle = (i % 2 ? 1 : -1) * 0.05 * (i - half + 1);
-    source.Image(place[i]).CamFromWorld() =
+    SetPoseAndRegister(
+        place[i],
         colmap::Rigid3d(Eigen::Quaterniond(
                             Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())),
                         Eigen::Vector3d(0.3 * angle, 0, 0)) *
-        source.Image(place[i]).CamFromWorld();
+            source.Image(place[i]).CamFromWorld(),
+        &source);
   }
   const ModelAlignment a = AlignModelsByRegisteredImages(
       target, source, *(*cache_)->CorrespondenceGraph(),
@@ -216,11 +221,11 @@ TEST_F(ModelMergingTest, CompletionTakesOutImagesWithFewPointsOfTheModel) {
   EXPECT_EQ(RemoveUnanchoredImages(before, kMin, &scene),
             static_cast<int>(expect_removed.size()));
   for (const colmap::image_t id : expect_kept)
-    EXPECT_TRUE(scene.IsImageRegistered(id));
+    EXPECT_TRUE(scene.Image(id).HasPose());
   for (const colmap::image_t id : expect_removed)
-    EXPECT_FALSE(scene.IsImageRegistered(id));
+    EXPECT_FALSE(scene.Image(id).HasPose());
   for (const colmap::image_t id : before)
-    EXPECT_TRUE(scene.IsImageRegistered(id));
+    EXPECT_TRUE(scene.Image(id).HasPose());
 }
 
 TEST_F(ModelMergingTest, AnUnlinkedPlaceStaysApart) {
@@ -287,7 +292,7 @@ TEST_F(ModelMergingTest, ALeafPlacedBadlyIsLeftOutOfItsCluster) {
   no_adjustment.enabled = false;
   const ClusterMerge merge =
       MergeLeafModels(work / "kernel", {work / "bad", work / "good"}, *cache_,
-                      colmap::IncrementalMapperOptions(), 12, no_adjustment);
+                      colmap::IncrementalPipelineOptions(), 12, no_adjustment);
   EXPECT_EQ(merge.num_merged, 1);
   ASSERT_EQ(merge.left_out.size(), 1u);
   EXPECT_EQ(merge.left_out[0].leaf, 0);

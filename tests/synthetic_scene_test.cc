@@ -180,16 +180,17 @@ TEST_F(SyntheticSceneTest, RealismFeatures) {
   options.false_pairs_per_100_images = 5;
   const SyntheticSceneSummary summary = Write(options);
   EXPECT_GT(summary.num_false_pairs, 0);
-  colmap::Database database(Db());
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(Db());
   colmap::Reconstruction gt;
   gt.ReadBinary(Gt());
-  ASSERT_EQ(database.NumImages(), static_cast<size_t>(summary.num_images));
+  ASSERT_EQ(database->NumImages(), static_cast<size_t>(summary.num_images));
 
   std::set<colmap::camera_t> cameras;
-  for (const colmap::Image& image : database.ReadAllImages()) {
+  for (const colmap::Image& image : database->ReadAllImages()) {
     cameras.insert(image.CameraId());
     // Every image has its own camera with a prior focal close to the truth.
-    const colmap::Camera camera = database.ReadCamera(image.CameraId());
+    const colmap::Camera camera = database->ReadCamera(image.CameraId());
     const colmap::Camera& truth =
         gt.Camera(gt.FindImageWithName(image.Name())->CameraId());
     EXPECT_TRUE(camera.has_prior_focal_length);
@@ -200,12 +201,12 @@ TEST_F(SyntheticSceneTest, RealismFeatures) {
 
   // Raw matches hold outliers that the verified inliers do not.
   std::vector<std::pair<colmap::image_pair_t, colmap::FeatureMatches>> raw =
-      database.ReadAllMatches();
+      database->ReadAllMatches();
   size_t num_raw = 0, num_inliers = 0;
   for (const auto& [pair_id, matches] : raw) {
     num_raw += matches.size();
-    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_id);
-    num_inliers += database.ReadTwoViewGeometry(id1, id2).inlier_matches.size();
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    num_inliers += database->ReadTwoViewGeometry(id1, id2).inlier_matches.size();
   }
   EXPECT_GT(num_raw, num_inliers * 1.2);
 
@@ -217,10 +218,11 @@ TEST_F(SyntheticSceneTest, RealismFeatures) {
   for (const auto& [point_id, point] : gt.Points3D()) {
     for (const colmap::TrackElement& el : point.track.Elements()) {
       const colmap::Image& image = gt.Image(el.image_id);
-      const Eigen::Vector2d projected =
+      const std::optional<Eigen::Vector2d> projected =
           gt.Camera(image.CameraId())
-              .ImgFromCam((image.CamFromWorld() * point.xyz).hnormalized());
-      error_sum += (projected - image.Point2D(el.point2D_idx).xy).norm();
+              .ImgFromCam(image.CamFromWorld() * point.xyz);
+      ASSERT_TRUE(projected.has_value());
+      error_sum += (*projected - image.Point2D(el.point2D_idx).xy).norm();
       ++num_observations;
     }
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_set>
 
+#include "sfm/model_merging.h"
 #include "tmr/colmap/synthetic_scene.h"
 
 namespace tmr {
@@ -48,8 +49,8 @@ inline void MoveGroupApart(const std::unordered_set<colmap::image_t>& group,
     if (in_group.Length() >= 2) model->AddPoint3D(moved * point.xyz, in_group);
   }
   for (const colmap::image_t id : group) {
-    model->Image(id).CamFromWorld() =
-        model->Image(id).CamFromWorld() * colmap::Inverse(moved);
+    SetPoseAndRegister(
+        id, model->Image(id).CamFromWorld() * colmap::Inverse(moved), model);
   }
 }
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Installs everything tmr needs on a Debian bookworm machine and builds COLMAP 3.10
-# from Debian's (trixie) source package into a fixed prefix outside the checkout.
-# With TMR_WITH_COLMAP4=1 it also builds PoseLib 2.0.5 and COLMAP 4.1.1 (issue 24,
-# the port under way; tmr itself still builds against 3.10).
+# Installs everything tmr needs on a Debian bookworm machine and builds PoseLib
+# 2.0.5 and COLMAP 4.1.1 into a fixed prefix outside the checkout, from the
+# source archives in ../shared/vendor when that folder exists (checked against
+# its SHA256SUMS) and otherwise from the repositories' tags (commits checked).
 #
 # Idempotent: a second run on the same machine checks a few stamps and exits in
 # seconds. Needs root (or sudo) for apt-get.
@@ -10,34 +10,22 @@
 # Environment:
 #   TMR_DEPS_PREFIX   where COLMAP is installed (default /opt/tmr-deps)
 #   TMR_JOBS          parallel build jobs (default 2)
-#   TMR_WITH_COLMAP4  1: also PoseLib 2.0.5 and COLMAP 4.1.1 (default 0)
-#   TMR_VENDOR_DIR    source archives of those two with SHA256SUMS (default: the
-#                     checkout's ../shared/vendor when it exists; otherwise the
-#                     repositories' tags are cloned and their commits checked)
+#   TMR_VENDOR_DIR    the source archives with SHA256SUMS (default: the
+#                     checkout's ../shared/vendor)
 set -euo pipefail
 
 PREFIX="${TMR_DEPS_PREFIX:-/opt/tmr-deps}"
 JOBS="${TMR_JOBS:-2}"
-COLMAP_VERSION="3.10"
-COLMAP_DEB_VERSION="3.10-2"
-COLMAP_TARBALL="colmap_${COLMAP_VERSION}.orig.tar.gz"
-COLMAP_SHA256="61850f323e201ab6a1abbfb0e4a8b3ba1c4cedbf55e0a5716bdea1df8ae1813a"
-COLMAP_PREFIX="${PREFIX}/colmap-${COLMAP_VERSION}"
-STAMP="${COLMAP_PREFIX}/.tmr-installed"
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git dpkg-dev ca-certificates
-  libeigen3-dev libgoogle-glog-dev libgflags-dev libceres-dev libflann-dev
-  libfreeimage-dev libmetis-dev libsqlite3-dev sqlite3
+  libeigen3-dev libgoogle-glog-dev libgflags-dev libceres-dev
+  libfaiss-dev libopenimageio-dev openimageio-tools libglew-dev
+  libmetis-dev libsqlite3-dev sqlite3
   libboost-program-options-dev libboost-filesystem-dev libboost-graph-dev
   libboost-system-dev libsuitesparse-dev libgtest-dev libgmock-dev
   libopencv-dev nlohmann-json3-dev clang python3 iproute2 procps
 )
-WITH_COLMAP4="${TMR_WITH_COLMAP4:-0}"
-# COLMAP 4.1.1 needs these besides the above (../shared/vendor/README.md).
-if [[ $WITH_COLMAP4 == 1 ]]; then
-  PACKAGES+=(libfaiss-dev libopenimageio-dev openimageio-tools libglew-dev)
-fi
 # The Slurm test starts its own single-node Slurm from these
 # (tests/slurm/local_slurm.sh); the packages' own services are not started.
 # Optional: without them that one test is skipped.
@@ -92,66 +80,7 @@ else
   [[ -z "$guard" ]] || $SUDO rm -f "$guard"
 fi
 
-# --- 2. COLMAP 3.10 ----------------------------------------------------------
-install_colmap310() {
-if [[ -f "$STAMP" && -x "${COLMAP_PREFIX}/bin/colmap" &&
-      -f "${COLMAP_PREFIX}/share/colmap/colmap-config.cmake" ]]; then
-  log "COLMAP ${COLMAP_VERSION}: already installed in ${COLMAP_PREFIX}"
-  return 0
-fi
-
-SRC_DIR="${PREFIX}/src"
-$SUDO mkdir -p "$SRC_DIR"
-$SUDO chown "$(id -u):$(id -g)" "$PREFIX" "$SRC_DIR"
-
-if [[ ! -f "${SRC_DIR}/${COLMAP_TARBALL}" ]] ||
-   ! echo "${COLMAP_SHA256}  ${SRC_DIR}/${COLMAP_TARBALL}" | sha256sum -c --status; then
-  SRC_LIST=/etc/apt/sources.list.d/tmr-trixie-src.sources
-  if [[ ! -f "$SRC_LIST" ]]; then
-    log "adding deb-src entry for Debian trixie (source packages only)"
-    uris=$(awk '/^URIs:/ {print $2; exit}' /etc/apt/sources.list.d/debian.sources 2>/dev/null || true)
-    uris="${uris:-http://deb.debian.org/debian}"
-    signed=$(awk '/^Signed-By:/ {print $2; exit}' /etc/apt/sources.list.d/debian.sources 2>/dev/null || true)
-    signed="${signed:-/usr/share/keyrings/debian-archive-keyring.gpg}"
-    printf 'Types: deb-src\nURIs: %s\nSuites: trixie\nComponents: main\nSigned-By: %s\n' \
-      "$uris" "$signed" | $SUDO tee "$SRC_LIST" >/dev/null
-  fi
-  log "apt-get update (with trixie sources)"
-  $SUDO apt-get update -qq || die "apt-get update failed"
-  log "downloading COLMAP ${COLMAP_DEB_VERSION} source tarball"
-  (cd "$SRC_DIR" && rm -f "$COLMAP_TARBALL" &&
-     apt-get source --tar-only "colmap=${COLMAP_DEB_VERSION}" >/tmp/tmr-apt-source.log 2>&1) ||
-    { tail -n 5 /tmp/tmr-apt-source.log >&2; die "cannot download colmap=${COLMAP_DEB_VERSION} source from Debian"; }
-  # The deb-src entry was only needed for this download.
-  $SUDO rm -f "$SRC_LIST"
-  echo "${COLMAP_SHA256}  ${SRC_DIR}/${COLMAP_TARBALL}" | sha256sum -c --status ||
-    die "sha256 mismatch for ${COLMAP_TARBALL}"
-fi
-log "sha256 of ${COLMAP_TARBALL}: ok"
-
-BUILD_ROOT="${SRC_DIR}/colmap-${COLMAP_VERSION}"
-rm -rf "$BUILD_ROOT"
-mkdir -p "$BUILD_ROOT"
-tar -xzf "${SRC_DIR}/${COLMAP_TARBALL}" -C "$BUILD_ROOT" --strip-components=1
-log "configuring COLMAP (Release, no GUI/CUDA/CGAL)"
-cmake -S "$BUILD_ROOT" -B "$BUILD_ROOT/build" -G Ninja \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$COLMAP_PREFIX" \
-  -DGUI_ENABLED=OFF -DOPENGL_ENABLED=OFF -DCUDA_ENABLED=OFF -DCGAL_ENABLED=OFF \
-  -DTESTS_ENABLED=OFF -DIPO_ENABLED=OFF >"$BUILD_ROOT/configure.log" 2>&1 ||
-  { tail -n 30 "$BUILD_ROOT/configure.log" >&2; die "COLMAP configure failed"; }
-log "building COLMAP with ${JOBS} jobs (about 10 minutes on 2 cores)"
-start=$(date +%s)
-cmake --build "$BUILD_ROOT/build" -j "$JOBS" >"$BUILD_ROOT/build.log" 2>&1 ||
-  { tail -n 30 "$BUILD_ROOT/build.log" >&2; die "COLMAP build failed (log: $BUILD_ROOT/build.log)"; }
-cmake --install "$BUILD_ROOT/build" >"$BUILD_ROOT/install.log" 2>&1 ||
-  die "COLMAP install failed"
-"${COLMAP_PREFIX}/bin/colmap" help >/dev/null 2>&1 || die "installed colmap does not run"
-date -u +%FT%TZ >"$STAMP"
-rm -rf "$BUILD_ROOT/build"
-log "COLMAP ${COLMAP_VERSION} installed in ${COLMAP_PREFIX} ($(( $(date +%s) - start )) s build)"
-}
-
-# --- 3. PoseLib 2.0.5 and COLMAP 4.1.1 (TMR_WITH_COLMAP4=1) ---------------------
+# --- 2. PoseLib 2.0.5 and COLMAP 4.1.1 --------------------------------------------
 COLMAP4_VERSION="4.1.1"
 COLMAP4_COMMIT="a0d785fba74b2664f31edc4a29026a8b27c00f67"
 POSELIB_VERSION="2.0.5"
@@ -223,5 +152,4 @@ install_colmap4() {
   log "COLMAP ${COLMAP4_VERSION} installed in ${COLMAP4_PREFIX} ($(( $(date +%s) - start )) s build)"
 }
 
-install_colmap310
-if [[ $WITH_COLMAP4 == 1 ]]; then install_colmap4; fi
+install_colmap4

@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
               << "': " << e.what() << "\n";
     return 1;
   }
-  std::vector<uint32_t> ids(model->RegImageIds().begin(),
-                            model->RegImageIds().end());
+  const std::vector<colmap::image_t> registered = model->RegImageIds();
+  const std::vector<uint32_t> ids(registered.begin(), registered.end());
   const std::string scratch =
       (std::filesystem::temp_directory_path() /
        ("bench_adjustment_" + std::to_string(getpid()) + ".db"))
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   getrusage(RUSAGE_SELF, &usage);
   std::cout << "loaded: " << ids.size() << " images, peak RSS "
             << usage.ru_maxrss / 1024 << " MiB\n";
-  colmap::IncrementalMapperOptions options;
+  colmap::IncrementalPipelineOptions options;
   options.num_threads = 2;
   const auto start = std::chrono::steady_clock::now();
   tmr::MergedModelAdjustment adjustment;

@@ -19,7 +19,7 @@ database=$1
 model=$2
 iterations=${3:-3}
 root=$(cd "$(dirname "$0")/../.." && pwd)
-colmap=${COLMAP:-/opt/tmr-deps/colmap-3.10/bin/colmap}
+colmap=${COLMAP:-/opt/tmr-deps/colmap-4.1.1/bin/colmap}
 bench=${BENCH_ADJUSTMENT:-$root/build/tools/bench_adjustment}
 for f in "$database" "$model/images.bin" "$colmap" "$bench"; do
   [[ -e $f ]] || { echo "$0: error: '$f' not found" >&2; exit 1; }

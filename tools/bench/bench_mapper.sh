@@ -19,7 +19,7 @@
 # lower bound on its time, for scenes where it takes hours).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
+COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
 BIN=build/tools
 OUT=out/bench_mapper
 THREADS="${THREADS:-2}"

@@ -56,16 +56,16 @@ void WriteGraphDatabase(const std::string& path, int n, int nearest) {
   for (int i = 0; i < n; ++i)
     bucket[cell(xy[i].first) * cells + cell(xy[i].second)].push_back(i);
 
-  colmap::Database database(path);
-  colmap::DatabaseTransaction transaction(&database);
+  const std::shared_ptr<colmap::Database> database = colmap::Database::Open(path);
+  colmap::DatabaseTransaction transaction(database.get());
   for (int i = 0; i < n; ++i) {
     const auto camera_id =
-        database.WriteCamera(colmap::Camera::CreateFromModelName(
+        database->WriteCamera(colmap::Camera::CreateFromModelName(
             colmap::kInvalidCameraId, "SIMPLE_RADIAL", 1000, 1024, 768));
     colmap::Image image;
     image.SetName("img" + std::to_string(i) + ".jpg");
     image.SetCameraId(camera_id);
-    database.WriteKeypoints(database.WriteImage(image),
+    database->WriteKeypoints(database->WriteImage(image),
                             colmap::FeatureKeypoints(kKeypoints));
   }
   std::uniform_int_distribution<int> keypoint(0, kKeypoints - 1);
@@ -94,9 +94,9 @@ void WriteGraphDatabase(const std::string& path, int n, int nearest) {
       for (int k = 0; k < count; ++k)
         geometry.inlier_matches.emplace_back(keypoint(rng), keypoint(rng));
       if (i < j) {
-        database.WriteTwoViewGeometry(i + 1, j + 1, geometry);
-      } else if (!database.ExistsInlierMatches(j + 1, i + 1)) {
-        database.WriteTwoViewGeometry(i + 1, j + 1, geometry);
+        database->WriteTwoViewGeometry(i + 1, j + 1, geometry);
+      } else if (!database->ExistsTwoViewGeometry(j + 1, i + 1)) {
+        database->WriteTwoViewGeometry(i + 1, j + 1, geometry);
       }
     }
   }

@@ -15,7 +15,7 @@
 # Results: out/bench_real/results.csv and a markdown table on stdout.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
+COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
 BIN=build/tools
 OUT=out/bench_real
 DATA="${DATA:-../shared/data}"

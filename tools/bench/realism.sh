@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 DATA="${1:-../shared/data}"
-COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-3.10/bin/colmap"
+COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
 BIN=build/tools
 OUT=out/realism
 [[ -x "$COLMAP" && -x "$BIN/tmr_synth" ]] || { echo "run tools/build.sh first" >&2; exit 1; }

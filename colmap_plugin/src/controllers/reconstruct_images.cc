@@ -3,6 +3,7 @@
 
 #include <colmap/controllers/feature_extraction.h>
 #include <colmap/controllers/feature_matching.h>
+#include <colmap/feature/sift.h>
 #include <colmap/sensor/models.h>
 #include <sqlite3.h>
 
@@ -170,18 +171,19 @@ bool RunReconstructImages(
   {
     const auto start = Clock::now();
     colmap::ImageReaderOptions reader;
-    reader.database_path = database;
     reader.image_path = options.image_path;
     reader.camera_model = options.camera_model;
     reader.single_camera = options.single_camera;
-    colmap::SiftExtractionOptions sift;
-    sift.use_gpu = false;
-    sift.num_threads = options.num_threads;
-    sift.max_image_size = options.max_image_size;
-    sift.max_num_features = options.max_num_features;
+    colmap::FeatureExtractionOptions extraction(
+        colmap::FeatureExtractorType::SIFT);
+    extraction.use_gpu = false;
+    extraction.num_threads = options.num_threads;
+    extraction.max_image_size = options.max_image_size;
+    extraction.sift->max_num_features = options.max_num_features;
     say("extracting features of " + std::to_string(report->num_photos) +
         " photos");
-    auto extractor = colmap::CreateFeatureExtractorController(reader, sift);
+    auto extractor =
+        colmap::CreateFeatureExtractorController(database, reader, extraction);
     RunWithProgress(
         extractor.get(), "features",
         [&] { return CountRows(database, "SELECT COUNT(*) FROM descriptors"); },
@@ -206,7 +208,7 @@ bool RunReconstructImages(
                             ? "exhaustive"
                             : "sequential";
     }
-    colmap::SiftMatchingOptions matching;
+    colmap::FeatureMatchingOptions matching;
     matching.use_gpu = false;
     matching.num_threads = options.num_threads;
     matching.guided_matching = options.guided_matching;
@@ -215,16 +217,16 @@ bool RunReconstructImages(
     int64_t pairs = n * (n - 1) / 2;
     std::unique_ptr<colmap::Thread> matcher;
     if (report->matcher == "exhaustive") {
-      matcher = colmap::CreateExhaustiveFeatureMatcher({}, matching, geometry,
-                                                       database);
+      matcher = colmap::CreateExhaustiveFeatureMatcher(
+          colmap::ExhaustivePairingOptions(), matching, geometry, database);
     } else if (report->matcher == "sequential") {
-      colmap::SequentialMatchingOptions sequential;
+      colmap::SequentialPairingOptions sequential;
       sequential.overlap = options.sequential_overlap;
       pairs = std::min<int64_t>(pairs, n * options.sequential_overlap * 3 / 2);
       matcher = colmap::CreateSequentialFeatureMatcher(sequential, matching,
                                                        geometry, database);
     } else {
-      colmap::SpatialMatchingOptions spatial;
+      colmap::SpatialPairingOptions spatial;
       spatial.max_num_neighbors = options.spatial_max_num_neighbors;
       spatial.num_threads = options.num_threads;
       pairs = std::min<int64_t>(pairs, n * options.spatial_max_num_neighbors);

@@ -63,7 +63,8 @@ int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
     }
     if (anchored < min_anchored) unanchored.push_back(id);
   }
-  for (const colmap::image_t id : unanchored) scene->DeRegisterImage(id);
+  for (const colmap::image_t id : unanchored)
+    scene->DeRegisterFrame(scene->Image(id).FrameId());
   return static_cast<int>(unanchored.size());
 }
 
@@ -76,7 +77,7 @@ void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
 ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
-                             const colmap::IncrementalMapperOptions& mapper,
+                             const colmap::IncrementalPipelineOptions& mapper,
                              int min_shared_tracks,
                              const MergedModelAdjustment& adjustment) {
   // COLMAP's thresholds for its own reprojection-verified alignment
@@ -132,9 +133,9 @@ SceneAssembler::SceneAssembler(
       num_threads_(num_threads),
       record_(std::move(record)) {
   for (const auto& [pair_id, num_correspondences] :
-       cache_->CorrespondenceGraph()->NumCorrespondencesBetweenImages()) {
+       cache_->CorrespondenceGraph()->NumMatchesBetweenAllImages()) {
     if (num_correspondences == 0) continue;
-    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_id);
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
     image_links_[id1].emplace_back(id2, num_correspondences);
     image_links_[id2].emplace_back(id1, num_correspondences);
   }
@@ -298,8 +299,8 @@ void SceneAssembler::CompleteScenes(
       for (const colmap::image_t id :
            std::vector<colmap::image_t>(smaller.RegImageIds())) {
         if (!before_ids.count(id) && scene->ExistsImage(id) &&
-            scene->IsImageRegistered(id)) {
-          smaller.DeRegisterImage(id);
+            scene->Image(id).HasPose()) {
+          smaller.DeRegisterFrame(smaller.Image(id).FrameId());
           ++taken;
         }
       }
@@ -383,17 +384,17 @@ bool SceneAssembler::ReconstructLeftovers(
     std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
   const auto start = Clock::now();
   const auto held = HeldImageNames(*scenes);
-  auto options = std::make_shared<colmap::IncrementalMapperOptions>(
+  auto options = std::make_shared<colmap::IncrementalPipelineOptions>(
       ColmapOptions(o_.mapper, num_threads_));
   options->extract_colors = false;
   for (const std::string& name : image_names_) {
-    if (!held.count(name)) options->image_names.insert(name);
+    if (!held.count(name)) options->image_names.push_back(name);
   }
   const int leftovers = static_cast<int>(options->image_names.size());
   if (leftovers < 2) return false;
   auto manager = std::make_shared<colmap::ReconstructionManager>();
-  colmap::IncrementalMapperController controller(options, "", merge_database_,
-                                                 manager);
+  colmap::IncrementalPipeline controller(
+      options, colmap::Database::Open(merge_database_), manager);
   controller.Run();
   int registered = 0, added = 0;
   for (const auto& model : DisjointModels(*manager)) {

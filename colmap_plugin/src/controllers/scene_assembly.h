@@ -1,7 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
-#include <colmap/controllers/incremental_mapper.h>
+#include <colmap/controllers/incremental_pipeline.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
 
@@ -55,7 +55,7 @@ struct ClusterMerge {
 ClusterMerge MergeLeafModels(const std::string& kernel_model,
                              const std::vector<std::string>& leaf_models,
                              std::shared_ptr<const colmap::DatabaseCache> cache,
-                             const colmap::IncrementalMapperOptions& mapper,
+                             const colmap::IncrementalPipelineOptions& mapper,
                              int min_shared_tracks,
                              const MergedModelAdjustment& adjustment);
 

@@ -194,9 +194,9 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
 
 bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
                               TmrTaskReport* row, std::string* error) const {
-  colmap::IncrementalMapperOptions mapper =
+  colmap::IncrementalPipelineOptions mapper =
       ColmapOptions(o_.mapper, num_threads);
-  mapper.ba_global_images_ratio = o_.task_ba_global_ratio;
+  mapper.ba_global_frames_ratio = o_.task_ba_global_ratio;
   mapper.ba_global_points_ratio = o_.task_ba_global_ratio;
   const TmrKernelNode& node = tree_.kernels.at(task.kernel);
   const std::string model = Model(task);
@@ -237,7 +237,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     for (const uint32_t id : Ids(tree_, node.leaf_clusters.at(task.leaf)))
       images.push_back(id);
     base_model = work_.KernelModel(task.kernel);
-    mapper.fix_existing_images = o_.fix_base_in_leaves;
+    mapper.fix_existing_frames = o_.fix_base_in_leaves;
   }
   const MatchConsistencyOptions kernel_check;
   bool reused = false;

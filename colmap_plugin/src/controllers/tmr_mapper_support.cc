@@ -18,9 +18,9 @@
 
 namespace tmr {
 
-colmap::IncrementalMapperOptions ColmapOptions(
+colmap::IncrementalPipelineOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads) {
-  colmap::IncrementalMapperOptions o;
+  colmap::IncrementalPipelineOptions o;
   o.min_num_matches = m.min_num_matches;
   o.ignore_watermarks = m.ignore_watermarks;
   o.min_model_size = m.min_model_size;
@@ -37,7 +37,7 @@ colmap::IncrementalMapperOptions ColmapOptions(
   o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
   o.ba_global_max_refinements = m.ba_global_max_refinements;
   o.ba_global_function_tolerance = m.ba_global_function_tolerance;
-  o.ba_local_num_images = m.ba_local_num_images;
+  o.mapper.ba_local_num_images = m.ba_local_num_images;
   o.ba_local_max_num_iterations = m.ba_local_max_num_iterations;
   o.ba_local_max_refinements = m.ba_local_max_refinements;
   o.ba_local_function_tolerance = m.ba_local_function_tolerance;

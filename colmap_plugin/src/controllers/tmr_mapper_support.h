@@ -3,7 +3,7 @@
 // report.
 #pragma once
 
-#include <colmap/controllers/incremental_mapper.h>
+#include <colmap/controllers/incremental_pipeline.h>
 
 #include <chrono>
 #include <cstdint>
@@ -16,7 +16,7 @@
 namespace tmr {
 
 // COLMAP's mapper options with tmr_mapper's pass-through values.
-colmap::IncrementalMapperOptions ColmapOptions(
+colmap::IncrementalPipelineOptions ColmapOptions(
     const MapperPassThroughOptions& m, int num_threads);
 
 // The bundle adjustment of a merged model that the options ask for: the

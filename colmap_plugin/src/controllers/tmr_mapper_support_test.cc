@@ -17,15 +17,16 @@ fs::path WriteTwoImageDatabase() {
   const fs::path path = fs::temp_directory_path() /
                         ("tmr_fingerprint_" + std::to_string(getpid()) + ".db");
   fs::remove(path);
-  colmap::Database database(path.string());
-  const colmap::camera_t camera = database.WriteCamera(
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(path.string());
+  const colmap::camera_t camera = database->WriteCamera(
       colmap::Camera::CreateFromModelName(1, "SIMPLE_RADIAL", 500, 640, 480));
   for (const char* name : {"a.jpg", "b.jpg"}) {
     colmap::Image image;
     image.SetName(name);
     image.SetCameraId(camera);
-    const colmap::image_t id = database.WriteImage(image);
-    database.WriteKeypoints(id, colmap::FeatureKeypoints(20));
+    const colmap::image_t id = database->WriteImage(image);
+    database->WriteKeypoints(id, colmap::FeatureKeypoints(20));
   }
   return path;
 }
@@ -37,19 +38,20 @@ TEST(DatabaseContentHash, IgnoresCommitsThatChangeNoRowAndSeesNewMatches) {
 
   // COLMAP's tools open the database for writing (hierarchical_mapper
   // does): SQLite rewrites its change counters and the modification time.
-  { colmap::Database reopened(path.string()); }
+  { colmap::Database::Open(path.string()); }
   fs::last_write_time(path, fs::file_time_type::clock::now());
   EXPECT_NE(ReadFileToString(path.string()), bytes);
   EXPECT_EQ(DatabaseContentHash(path.string()), written);
 
   {
-    colmap::Database database(path.string());
+    const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(path.string());
     colmap::TwoViewGeometry geometry;
     geometry.config = colmap::TwoViewGeometry::CALIBRATED;
     geometry.inlier_matches = colmap::FeatureMatches(15);
     for (colmap::point2D_t i = 0; i < 15; ++i)
       geometry.inlier_matches[i] = {i, i};
-    database.WriteTwoViewGeometry(1, 2, geometry);
+    database->WriteTwoViewGeometry(1, 2, geometry);
   }
   EXPECT_NE(DatabaseContentHash(path.string()), written);
   fs::remove(path);

@@ -2,9 +2,9 @@
 #include "evaluation/evaluate_reconstruction.h"
 
 #include <colmap/estimators/alignment.h>
-#include <colmap/estimators/similarity_transform.h>
+#include <colmap/estimators/solvers/similarity_transform.h>
 #include <colmap/geometry/sim3.h>
-#include <colmap/math/random.h>
+#include <colmap/math/math.h>
 #include <colmap/optim/loransac.h>
 
 #include <algorithm>
@@ -43,7 +43,7 @@ ErrorStatistics Statistics(const std::vector<double>& values) {
 // Robust sim3 from model centres to reference centres; false if none fits.
 bool AlignCentres(const std::vector<Eigen::Vector3d>& model,
                   const std::vector<Eigen::Vector3d>& reference,
-                  double max_error, int min_inliers,
+                  double max_error, int min_inliers, unsigned seed,
                   colmap::Sim3d* ref_from_model,
                   std::vector<char>* inlier_mask) {
   if (model.size() < 3) return false;
@@ -51,6 +51,7 @@ bool AlignCentres(const std::vector<Eigen::Vector3d>& model,
   ransac.max_error = max_error;
   ransac.min_inlier_ratio = 0.05;
   ransac.max_num_trials = 2000;
+  ransac.random_seed = static_cast<int>(seed);
   Sim3Ransac estimator(ransac);
   const auto report = estimator.Estimate(model, reference);
   if (!report.success ||
@@ -131,11 +132,10 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
   eval.scene_scale = std::sqrt(sum2 / reference_centres.size());
   if (eval.scene_scale <= 0) return eval;
 
-  colmap::SetPRNGSeed(options.seed);
   colmap::Sim3d ref_from_model;
   std::vector<char> inliers;
   if (!AlignCentres(model_centres, reference_centres,
-                    options.inlier_threshold * eval.scene_scale, 3,
+                    options.inlier_threshold * eval.scene_scale, 3, options.seed,
                     &ref_from_model, &inliers)) {
     return eval;
   }
@@ -175,7 +175,8 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
   if (eval.num_displaced_images >= options.min_wrong_merge_images &&
       AlignCentres(displaced_model, displaced_reference,
                    options.inlier_threshold * eval.scene_scale,
-                   options.min_wrong_merge_images, &part_from_model,
+                   options.min_wrong_merge_images, options.seed,
+                   &part_from_model,
                    &part_inliers)) {
     eval.wrong_merge = true;
     std::vector<double> offsets;
@@ -188,7 +189,7 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
     }
     eval.displacement = Quantile(offsets, 0.5);
     eval.displacement_rotation_deg = colmap::RadToDeg(
-        ref_from_model.rotation.angularDistance(part_from_model.rotation));
+        ref_from_model.rotation().angularDistance(part_from_model.rotation()));
   }
   return eval;
 }
@@ -221,8 +222,10 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
     throw std::runtime_error(error);
   std::optional<MatchConsistency> result;
   try {
-    const colmap::Database database(scratch.string());
-    result = CheckMatchConsistency(model, database, MatchConsistencyOptions());
+    const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(scratch.string());
+    result =
+        CheckMatchConsistency(model, *database, MatchConsistencyOptions());
   } catch (const std::exception& e) {
     error = e.what();
   }

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/block_adjustment.h"
 
+#include <colmap/estimators/bundle_adjustment_ceres.h>
 #include <colmap/geometry/triangulation.h>
 #include <colmap/scene/projection.h>
 
@@ -49,13 +50,20 @@ void RetriangulateIfBetter(colmap::Reconstruction* model,
   for (const colmap::TrackElement& element : point.track.Elements()) {
     const colmap::Image& image = model->Image(element.image_id);
     cams_from_world.push_back(image.CamFromWorld().ToMatrix());
-    normalized.push_back(
+    const std::optional<Eigen::Vector2d> cam_point =
         model->Camera(image.CameraId())
-            .CamFromImg(image.Point2D(element.point2D_idx).xy));
+            .CamFromImg(image.Point2D(element.point2D_idx).xy);
+    if (!cam_point) return;
+    normalized.push_back(*cam_point);
   }
-  const Eigen::Vector3d xyz =
-      colmap::TriangulateMultiViewPoint(cams_from_world, normalized);
-  if (xyz.allFinite() &&
+  Eigen::Vector3d xyz;
+  if (colmap::TriangulateMultiViewPoint(
+          colmap::span<const Eigen::Matrix3x4d>(cams_from_world.data(),
+                                                cams_from_world.size()),
+          colmap::span<const Eigen::Vector2d>(normalized.data(),
+                                              normalized.size()),
+          &xyz) &&
+      xyz.allFinite() &&
       SquaredReprojectionError(*model, point.track, xyz) <
           SquaredReprojectionError(*model, point.track, point.xyz))
     point.xyz = xyz;
@@ -85,7 +93,7 @@ std::vector<colmap::image_t> GrowBreadthFirst(
   for (size_t next = 0; next < order.size() && order.size() < max_images;
        ++next) {
     ForEachCovisibleImage(model, order[next], [&](colmap::image_t other) {
-      if (order.size() < max_images && model.IsImageRegistered(other) &&
+      if (order.size() < max_images && model.Image(other).HasPose() &&
           taken->insert(other).second) {
         order.push_back(other);
       }
@@ -100,23 +108,21 @@ std::vector<colmap::image_t> GrowBreadthFirst(
 // cost change below 1e-6; COLMAP's global adjustments run to the iteration
 // limit). Nothing when the problem has no residuals.
 std::optional<ceres::Solver::Summary> Solve(
-    const colmap::BundleAdjustmentOptions& options,
+    colmap::BundleAdjustmentOptions options,
     const colmap::BundleAdjustmentConfig& config,
     colmap::Reconstruction* model) {
-  colmap::BundleAdjuster adjuster(options, config);
-  const std::unique_ptr<ceres::LossFunction> loss(options.CreateLossFunction());
-  adjuster.SetUpProblem(model, loss.get());
-  if (adjuster.Problem()->NumResiduals() == 0) return std::nullopt;
-  ceres::Solver::Options solver =
-      adjuster.SetUpSolverOptions(*adjuster.Problem(), options.solver_options);
-  if (solver.sparse_linear_algebra_library_type != ceres::NO_SPARSE &&
-      solver.linear_solver_type == ceres::ITERATIVE_SCHUR) {
-    solver.linear_solver_type = ceres::SPARSE_SCHUR;
-  }
-  solver.function_tolerance = 1e-6;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, adjuster.Problem().get(), &summary);
-  return summary;
+  if (config.NumResiduals(*model) == 0) return std::nullopt;
+  options.print_summary = false;
+  options.ceres->max_num_images_direct_sparse_cpu_solver =
+      std::numeric_limits<int>::max();
+  options.ceres->solver_options.function_tolerance = 1e-6;
+  const std::shared_ptr<colmap::BundleAdjustmentSummary> summary =
+      colmap::CreateDefaultCeresBundleAdjuster(options, config, *model)
+          ->Solve();
+  const auto* ceres_summary =
+      dynamic_cast<const colmap::CeresBundleAdjustmentSummary*>(summary.get());
+  if (ceres_summary == nullptr) return std::nullopt;
+  return ceres_summary->ceres_summary;
 }
 
 }  // namespace
@@ -165,10 +171,8 @@ BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
       }
     }
   }
-  if (config.NumVariablePoints() == 0) {
-    config.SetConstantCamPose(block[0]);
-    if (block.size() > 1) config.SetConstantCamPositions(block[1], {0});
-  }
+  if (config.NumVariablePoints() == 0)
+    config.FixGauge(colmap::BundleAdjustmentGauge::TWO_CAMS_FROM_WORLD);
   const auto summary = Solve(options, config, model);
   if (!summary) return result;
   result.num_iterations = static_cast<int>(summary->iterations.size()) - 1;
@@ -180,12 +184,11 @@ BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
 
 std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
                              colmap::Reconstruction* model) {
-  const std::vector<colmap::image_t>& images = model->RegImageIds();
+  const std::vector<colmap::image_t> images = model->RegImageIds();
   if (images.size() < 2) return "";
   colmap::BundleAdjustmentConfig config;
   for (const colmap::image_t id : images) config.AddImage(id);
-  config.SetConstantCamPose(images[0]);
-  config.SetConstantCamPositions(images[1], {0});
+  config.FixGauge(colmap::BundleAdjustmentGauge::TWO_CAMS_FROM_WORLD);
   const auto summary = Solve(options, config, model);
   if (!summary) return "";
   return std::string(ceres::LinearSolverTypeToString(
@@ -211,12 +214,8 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
     for (size_t i = 0; i < n; ++i) kept.insert(by_length[i].second);
   }
   colmap::Reconstruction reduced;
-  for (const auto& [camera_id, camera] : model.Cameras())
-    reduced.AddCamera(camera);
-  for (const colmap::image_t id : model.RegImageIds()) {
-    reduced.AddImage(ImageWithoutPoints(model.Image(id)));
-    reduced.RegisterImage(id);
-  }
+  for (const colmap::image_t id : model.RegImageIds())
+    AddImageWithoutPoints(model, id, model.Image(id).CamFromWorld(), &reduced);
   std::vector<colmap::point3D_t> ids(kept.begin(), kept.end());
   std::sort(ids.begin(), ids.end());
   for (const colmap::point3D_t id : ids) {
@@ -250,7 +249,7 @@ std::string AdjustOnLongestTracks(
         (model->Image(id).CamFromWorld() * point.xyz);
   }
   for (const colmap::image_t id : reduced.RegImageIds())
-    model->Image(id).CamFromWorld() = reduced.Image(id).CamFromWorld();
+    SetPoseAndRegister(id, reduced.Image(id).CamFromWorld(), model);
   for (const auto& [camera_id, camera] : reduced.Cameras())
     model->Camera(camera_id).params = camera.params;
   for (const auto& [point_id, point] : reduced.Points3D())

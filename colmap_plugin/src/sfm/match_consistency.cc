@@ -29,17 +29,14 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
                                        const MatchConsistencyOptions& options) {
   if (std::string error; !options.Check(&error))
     throw std::invalid_argument("CheckMatchConsistency: " + error);
-  std::vector<colmap::image_pair_t> pair_ids;
-  std::vector<colmap::TwoViewGeometry> geometries;
-  database.ReadTwoViewGeometries(&pair_ids, &geometries);
   const double max_squared_error =
       options.max_reprojection_error * options.max_reprojection_error;
   MatchConsistency result;
-  for (size_t i = 0; i < pair_ids.size(); ++i) {
-    const auto [id1, id2] = colmap::Database::PairIdToImagePair(pair_ids[i]);
-    const auto& matches = geometries[i].inlier_matches;
+  for (const auto& [pair_id, geometry] : database.ReadTwoViewGeometries()) {
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    const auto& matches = geometry.inlier_matches;
     if (matches.empty() || !model.ExistsImage(id1) || !model.ExistsImage(id2) ||
-        !model.IsImageRegistered(id1) || !model.IsImageRegistered(id2))
+        !model.Image(id1).HasPose() || !model.Image(id2).HasPose())
       continue;
     const colmap::Image& image1 = model.Image(id1);
     const colmap::Image& image2 = model.Image(id2);
@@ -60,11 +57,15 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
         ++result.num_in_common_track;
         continue;
       }
-      const Eigen::Vector3d xyz = colmap::TriangulatePoint(
-          pose1, pose2, camera1.CamFromImg(p1.xy), camera2.CamFromImg(p2.xy));
+      const std::optional<Eigen::Vector2d> cam_point1 = camera1.CamFromImg(p1.xy);
+      const std::optional<Eigen::Vector2d> cam_point2 = camera2.CamFromImg(p2.xy);
+      Eigen::Vector3d xyz;
       // A match behind a camera cannot be placed at all: a wrong match
       // consistent with the epipolar geometry, not evidence against poses.
-      if (!xyz.allFinite() || !colmap::HasPointPositiveDepth(pose1, xyz) ||
+      if (!cam_point1 || !cam_point2 ||
+          !colmap::TriangulatePoint(pose1, pose2, *cam_point1, *cam_point2,
+                                    &xyz) ||
+          !xyz.allFinite() || !colmap::HasPointPositiveDepth(pose1, xyz) ||
           !colmap::HasPointPositiveDepth(pose2, xyz))
         continue;
       ++tested;

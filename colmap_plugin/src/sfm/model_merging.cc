@@ -2,8 +2,7 @@
 #include "sfm/model_merging.h"
 
 #include <colmap/estimators/bundle_adjustment.h>
-#include <colmap/estimators/similarity_transform.h>
-#include <colmap/math/random.h>
+#include <colmap/estimators/solvers/similarity_transform.h>
 #include <colmap/optim/loransac.h>
 #include <colmap/sfm/incremental_mapper.h>
 
@@ -44,7 +43,7 @@ std::vector<SharedTrack> SharedTracks(const colmap::Reconstruction& target,
     const auto range = graph.FindCorrespondences(source_image, idx);
     for (auto it = range.beg; it != range.end; ++it) {
       if (!target.ExistsImage(it->image_id) ||
-          !target.IsImageRegistered(it->image_id))
+          !target.Image(it->image_id).HasPose())
         continue;
       const colmap::Image& other = target.Image(it->image_id);
       const colmap::Point2D& match = other.Point2D(it->point2D_idx);
@@ -78,7 +77,7 @@ Sim3Ransac::Report EstimateSimilarity(const std::vector<SharedTrack>& tracks,
       options.max_relative_error * distances[distances.size() / 2];
   ransac.min_inlier_ratio = options.min_inlier_ratio;
   ransac.max_num_trials = 5000;
-  colmap::SetPRNGSeed(options.seed);
+  ransac.random_seed = static_cast<int>(options.seed);
   Sim3Ransac estimator(ransac);
   return estimator.Estimate(src, tgt);
 }
@@ -90,9 +89,9 @@ bool Reprojects(const colmap::Reconstruction& target, const colmap::Sim3d& sim,
   const colmap::Image& image = target.Image(t.target_image);
   const Eigen::Vector3d in_camera = image.CamFromWorld() * (sim * t.source_xyz);
   if (in_camera.z() <= 0) return false;
-  const Eigen::Vector2d xy =
-      target.Camera(image.CameraId()).ImgFromCam(in_camera.hnormalized());
-  return (xy - t.target_xy).norm() <= max_px;
+  const std::optional<Eigen::Vector2d> xy =
+      target.Camera(image.CameraId()).ImgFromCam(in_camera);
+  return xy && (*xy - t.target_xy).norm() <= max_px;
 }
 
 }  // namespace
@@ -104,7 +103,7 @@ SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
                                double max_reprojection_error_px) {
   SharedTrackFit fit;
   for (const colmap::image_t image_id : source.RegImageIds()) {
-    if (target.ExistsImage(image_id) && target.IsImageRegistered(image_id))
+    if (target.ExistsImage(image_id) && target.Image(image_id).HasPose())
       continue;
     for (const SharedTrack& t : SharedTracks(target, source, graph, image_id)) {
       ++fit.num_shared;
@@ -122,7 +121,7 @@ ModelAlignment AlignModelsBySharedTracks(
   ModelAlignment result;
   std::vector<SharedTrack> best, all;
   for (const colmap::image_t image_id : source.RegImageIds()) {
-    if (target.ExistsImage(image_id) && target.IsImageRegistered(image_id))
+    if (target.ExistsImage(image_id) && target.Image(image_id).HasPose())
       continue;
     std::vector<SharedTrack> shared =
         SharedTracks(target, source, graph, image_id);
@@ -194,17 +193,42 @@ ModelAlignment AlignModelsBySharedTracks(
   return result;
 }
 
-colmap::Image ImageWithoutPoints(const colmap::Image& image) {
+void AddImageWithoutPoints(const colmap::Reconstruction& source,
+                           colmap::image_t image_id,
+                           const colmap::Rigid3d& cam_from_world,
+                           colmap::Reconstruction* target) {
+  const colmap::Image& image = source.Image(image_id);
+  if (!target->ExistsCamera(image.CameraId()))
+    target->AddCamera(source.Camera(image.CameraId()));
+  const colmap::rig_t rig_id = source.Frame(image.FrameId()).RigId();
+  if (!target->ExistsRig(rig_id)) target->AddRig(source.Rig(rig_id));
+  if (!target->ExistsFrame(image.FrameId())) {
+    colmap::Frame frame = source.Frame(image.FrameId());
+    frame.ResetRigPtr();
+    frame.ResetPose();
+    target->AddFrame(std::move(frame));
+  }
   colmap::Image copy;
   copy.SetImageId(image.ImageId());
   copy.SetName(image.Name());
   copy.SetCameraId(image.CameraId());
-  copy.CamFromWorld() = image.CamFromWorld();
+  copy.SetFrameId(image.FrameId());
   std::vector<Eigen::Vector2d> xy;
   xy.reserve(image.NumPoints2D());
   for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
   copy.SetPoints2D(xy);
-  return copy;
+  target->AddImage(std::move(copy));
+  SetPoseAndRegister(image_id, cam_from_world, target);
+}
+
+void SetPoseAndRegister(colmap::image_t image_id,
+                        const colmap::Rigid3d& cam_from_world,
+                        colmap::Reconstruction* model) {
+  const colmap::Image& image = model->Image(image_id);
+  colmap::Frame& frame = model->Frame(image.FrameId());
+  const bool registered = frame.HasPose();
+  frame.SetCamFromWorld(image.CameraId(), cam_from_world);
+  if (!registered) model->RegisterFrame(frame.FrameId());
 }
 
 void AppendReconstruction(const colmap::Reconstruction& source,
@@ -212,27 +236,23 @@ void AppendReconstruction(const colmap::Reconstruction& source,
                           colmap::Reconstruction* target) {
   colmap::Reconstruction moved = source;
   moved.Transform(target_from_source);
-  for (const auto& [camera_id, camera] : moved.Cameras()) {
-    if (!target->ExistsCamera(camera_id)) target->AddCamera(camera);
-  }
   std::unordered_set<colmap::image_t> added;
   for (const colmap::image_t image_id : moved.RegImageIds()) {
     const colmap::Image& image = moved.Image(image_id);
     if (target->ExistsImage(image_id)) {
       // A model a mapper has continued holds every image of the database,
       // most unregistered; such an image takes the source's pose.
-      if (target->IsImageRegistered(image_id)) continue;
-      colmap::Image& held = target->Image(image_id);
+      const colmap::Image& held = target->Image(image_id);
+      if (held.HasPose()) continue;
       if (held.NumPoints2D() != image.NumPoints2D())
         throw std::logic_error(
             "AppendReconstruction: the models disagree on "
             "the keypoints of " +
             image.Name());
-      held.CamFromWorld() = image.CamFromWorld();
+      SetPoseAndRegister(image_id, image.CamFromWorld(), target);
     } else {
-      target->AddImage(ImageWithoutPoints(image));
+      AddImageWithoutPoints(moved, image_id, image.CamFromWorld(), target);
     }
-    target->RegisterImage(image_id);
     added.insert(image_id);
   }
   for (const auto& [point_id, point] : moved.Points3D()) {
@@ -245,7 +265,7 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 }
 
 std::string AdjustMergedBundle(
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment,
     colmap::IncrementalMapper* mapper) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
@@ -273,7 +293,7 @@ std::string AdjustMergedBundle(
 
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment,
     const std::shared_ptr<colmap::Reconstruction>& model) {
   colmap::IncrementalMapper mapper(database_cache);

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
-#include <colmap/controllers/incremental_mapper.h>
+#include <colmap/controllers/incremental_pipeline.h>
 #include <colmap/geometry/sim3.h>
 #include <colmap/scene/correspondence_graph.h>
 #include <colmap/scene/database_cache.h>
@@ -77,9 +77,19 @@ SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
                                const colmap::Sim3d& target_from_source,
                                double max_reprojection_error_px);
 
-// A copy of `image` (id, name, camera, pose, keypoints) whose keypoints
-// belong to no 3D point, to add to another model.
-colmap::Image ImageWithoutPoints(const colmap::Image& image);
+// Adds image `image_id` of `source` to `target` (id, name, camera,
+// keypoints, none of them on a 3D point; its camera, rig and frame too
+// where `target` lacks them), posed at cam_from_world and registered.
+void AddImageWithoutPoints(const colmap::Reconstruction& source,
+                           colmap::image_t image_id,
+                           const colmap::Rigid3d& cam_from_world,
+                           colmap::Reconstruction* target);
+
+// Poses image `image_id` of `model` (through its frame: tmr's frames hold
+// one image each) and registers its frame if it was not.
+void SetPoseAndRegister(colmap::image_t image_id,
+                        const colmap::Rigid3d& cam_from_world,
+                        colmap::Reconstruction* model);
 
 // Adds the registered images of `source` that `target` does not hold,
 // transformed by target_from_source, with their 3D points (observations in
@@ -140,7 +150,7 @@ struct MergedModelAdjustment {
 // 3,749-image model both solvers held 9.7 GB). Returns the solver's name
 // and Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
@@ -151,7 +161,7 @@ std::string AdjustMergedBundle(
 // report and the number of points filtered.
 std::string RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment,
     const std::shared_ptr<colmap::Reconstruction>& model);
 

@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/reconstruction_task.h"
 
+#include <colmap/controllers/incremental_pipeline.h>
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction_manager.h>
 
@@ -81,7 +82,8 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
   for (const auto& model : models) {
     const std::vector<colmap::image_t> images = model->RegImageIds();
     for (const colmap::image_t id : images) {
-      if (!held.insert(id).second) model->DeRegisterImage(id);
+      if (!held.insert(id).second)
+        model->DeRegisterFrame(model->Image(id).FrameId());
     }
   }
   return models;
@@ -100,26 +102,26 @@ constexpr double kEnoughShare = 0.5;
 // The images of the task database (`images`) that `model` does not
 // register, mapped from scratch; every model of at least kMinPartImages
 // images is written.
-void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
+void ReconstructRest(const colmap::IncrementalPipelineOptions& mapper_options,
                      const std::string& task_database,
                      const std::vector<colmap::Image>& images,
                      const colmap::Reconstruction& model,
                      const std::string& output_model,
                      ReconstructionTaskResult* result) {
   auto options =
-      std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
+      std::make_shared<colmap::IncrementalPipelineOptions>(mapper_options);
   options->multiple_models = true;
   options->extract_colors = false;
   options->min_model_size = kMinPartImages;
   options->image_names.clear();
   for (const colmap::Image& image : images) {
     if (!model.ExistsImage(image.ImageId()) ||
-        !model.IsImageRegistered(image.ImageId()))
-      options->image_names.insert(image.Name());
+        !model.Image(image.ImageId()).HasPose())
+      options->image_names.push_back(image.Name());
   }
   auto manager = std::make_shared<colmap::ReconstructionManager>();
-  colmap::IncrementalMapperController controller(options, "", task_database,
-                                                 manager);
+  colmap::IncrementalPipeline controller(
+      options, colmap::Database::Open(task_database), manager);
   controller.Run();
   for (const auto& model : DisjointModels(*manager)) {
     const auto& part = *model;
@@ -136,11 +138,11 @@ void ReconstructRest(const colmap::IncrementalMapperOptions& mapper_options,
 // initial pair (-1: COLMAP's choice), continuing `base_model` if given; the
 // largest model, or null.
 std::shared_ptr<colmap::Reconstruction> MapFromInitialPair(
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::pair<int, int>& initial_pair) {
   auto options =
-      std::make_shared<colmap::IncrementalMapperOptions>(mapper_options);
+      std::make_shared<colmap::IncrementalPipelineOptions>(mapper_options);
   options->multiple_models = false;
   options->extract_colors = false;
   options->image_names.clear();
@@ -151,8 +153,8 @@ std::shared_ptr<colmap::Reconstruction> MapFromInitialPair(
     const size_t index = manager->Add();
     manager->Get(index)->ReadBinary(base_model);
   }
-  colmap::IncrementalMapperController controller(options, "", task_database,
-                                                 manager);
+  colmap::IncrementalPipeline controller(
+      options, colmap::Database::Open(task_database), manager);
   controller.Run();
   std::shared_ptr<colmap::Reconstruction> largest;
   for (size_t i = 0; i < manager->Size(); ++i) {
@@ -186,7 +188,7 @@ std::string DescribeConsistency(const MatchConsistency& c) {
 // other candidate pair. A redo replaces the model when it contradicts fewer
 // matches and registers at least 90% as many images; the first consistent
 // one ends the search. Appends what happened to `how`.
-void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
+void RedoIfInconsistent(const colmap::IncrementalPipelineOptions& mapper_options,
                         const std::string& task_database,
                         const std::vector<std::pair<int, int>>& candidate_pairs,
                         const std::pair<int, int>& initial_pair,
@@ -194,18 +196,19 @@ void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
                         std::shared_ptr<colmap::Reconstruction>* model,
                         std::string* how) {
   const auto consistency = [&](const colmap::Reconstruction& m) {
-    const colmap::Database database(task_database);  // the task's own
-    return CheckMatchConsistency(m, database, check);
+    // The task's own database (COLMAP writes to what it opens).
+    return CheckMatchConsistency(m, *colmap::Database::Open(task_database),
+                                 check);
   };
   MatchConsistency best = consistency(**model);
   if (best.IsConsistent(check)) return;
   *how += "; " + DescribeConsistency(best);
-  colmap::IncrementalMapperOptions held = mapper_options;
+  colmap::IncrementalPipelineOptions held = mapper_options;
   held.ba_refine_focal_length = false;
   held.ba_refine_principal_point = false;
   held.ba_refine_extra_params = false;
   std::vector<
-      std::pair<const colmap::IncrementalMapperOptions*, std::pair<int, int>>>
+      std::pair<const colmap::IncrementalPipelineOptions*, std::pair<int, int>>>
       redos = {{&held, initial_pair}};
   for (const auto& pair : candidate_pairs)
     if (pair != initial_pair) redos.push_back({&mapper_options, pair});
@@ -233,7 +236,7 @@ void RedoIfInconsistent(const colmap::IncrementalMapperOptions& mapper_options,
 }  // namespace
 
 ReconstructionTaskResult RunReconstructionTask(
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
     const MatchConsistencyOptions* kernel_check,
@@ -242,8 +245,7 @@ ReconstructionTaskResult RunReconstructionTask(
   ReconstructionTaskResult result;
   std::vector<colmap::Image> images;
   {
-    colmap::Database database(task_database);
-    images = database.ReadAllImages();
+    images = colmap::Database::Open(task_database)->ReadAllImages();
   }
   result.num_images = static_cast<int>(images.size());
   // With a base model only one attempt makes sense; without, each initial

@@ -1,7 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #pragma once
 
-#include <colmap/controllers/incremental_mapper.h>
+#include <colmap/controllers/incremental_pipeline.h>
 #include <colmap/scene/reconstruction_manager.h>
 
 #include <memory>
@@ -33,7 +33,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
     colmap::ReconstructionManager& manager);
 
 // One reconstruction task of the TMR-tree (paper Sec. 5): COLMAP's
-// IncrementalMapperController on the task's own database, producing one
+// IncrementalPipeline on the task's own database, producing one
 // model written to `output_model` (through a temporary folder, renamed when
 // complete).
 //
@@ -57,7 +57,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // their own as for a kernel (tmr_synth city of 1,800: 68 of a leaf's 70
 // images).
 ReconstructionTaskResult RunReconstructionTask(
-    const colmap::IncrementalMapperOptions& mapper_options,
+    const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
     const MatchConsistencyOptions* kernel_check,

@@ -3,7 +3,6 @@
 
 #include <ceres/ceres.h>
 #include <colmap/estimators/pose.h>
-#include <colmap/math/random.h>
 #include <colmap/scene/projection.h>
 
 #include <algorithm>
@@ -30,7 +29,7 @@ TargetCorrespondences FindTargetCorrespondences(
     const auto range = graph.FindCorrespondences(image.ImageId(), idx);
     for (auto it = range.beg; it != range.end; ++it) {
       if (!target.ExistsImage(it->image_id) ||
-          !target.IsImageRegistered(it->image_id))
+          !target.Image(it->image_id).HasPose())
         continue;
       const colmap::Point2D& match =
           target.Image(it->image_id).Point2D(it->point2D_idx);
@@ -69,7 +68,7 @@ bool RegisterOnTarget(const colmap::Reconstruction& target,
   }
   colmap::AbsolutePoseEstimationOptions estimation;
   estimation.estimate_focal_length = false;
-  estimation.num_threads = 1;
+  estimation.ransac_options.random_seed = static_cast<int>(options.seed);
   estimation.ransac_options.max_error = options.max_abs_pose_error_px;
   estimation.ransac_options.min_inlier_ratio = options.min_inlier_ratio;
   estimation.ransac_options.min_num_trials = 100;
@@ -152,8 +151,8 @@ struct SimilarityReprojectionCost {
     const Eigen::Matrix<T, 3, 1> in_source =
         ceres::exp(log_scale[0]) * (rotation * target_xyz_.cast<T>()) + shift;
     const Eigen::Matrix<T, 3, 1> in_camera =
-        cam_from_world_.rotation.cast<T>() * in_source +
-        cam_from_world_.translation.cast<T>();
+        cam_from_world_.rotation().cast<T>() * in_source +
+        cam_from_world_.translation().cast<T>();
     residuals[0] =
         T(focal_) * (in_camera[0] / in_camera[2] - T(normalized_[0]));
     residuals[1] =
@@ -178,23 +177,26 @@ bool RefineOnObservations(const colmap::Reconstruction& target,
                           const colmap::Reconstruction& source,
                           const std::vector<RegisteredImage>& registered,
                           double max_px, colmap::Sim3d* source_from_target) {
-  Eigen::Quaterniond rotation = source_from_target->rotation;
-  Eigen::Vector3d translation = source_from_target->translation;
-  double log_scale = std::log(source_from_target->scale);
+  Eigen::Quaterniond rotation = source_from_target->rotation();
+  Eigen::Vector3d translation = source_from_target->translation();
+  double log_scale = std::log(source_from_target->scale());
   ceres::Problem problem;
   int num_residuals = 0;
   for (const RegisteredImage& r : registered) {
     const colmap::Image& image = source.Image(r.image_id);
     const colmap::Camera& camera = source.Camera(image.CameraId());
     for (const auto& [idx, point3D_id] : r.inliers) {
-      if (SourceReprojectionError(target, source, r, idx, point3D_id,
-                                  *source_from_target) > max_px)
+      const std::optional<Eigen::Vector2d> normalized =
+          camera.CamFromImg(image.Point2D(idx).xy);
+      if (!normalized || SourceReprojectionError(target, source, r, idx,
+                                                 point3D_id,
+                                                 *source_from_target) > max_px)
         continue;
       problem.AddResidualBlock(
           new ceres::AutoDiffCostFunction<SimilarityReprojectionCost, 2, 4, 3,
                                           1>(new SimilarityReprojectionCost(
               target.Point3D(point3D_id).xyz,
-              camera.CamFromImg(image.Point2D(idx).xy), image.CamFromWorld(),
+              *normalized, image.CamFromWorld(),
               camera.MeanFocalLength())),
           new ceres::HuberLoss(1.0), rotation.coeffs().data(),
           translation.data(), &log_scale);
@@ -229,13 +231,14 @@ bool SimilarityFromPoses(const colmap::Reconstruction& source,
   std::vector<Eigen::Vector3d> source_centers, target_centers;
   for (const RegisteredImage* r : images) {
     const colmap::Image& image = source.Image(r->image_id);
-    const Eigen::Quaterniond q = r->target_cam_from_world.rotation.inverse() *
-                                 image.CamFromWorld().rotation;
+    const Eigen::Quaterniond q =
+        r->target_cam_from_world.rotation().inverse() *
+        image.CamFromWorld().rotation();
     const Eigen::Vector4d v = q.coeffs();
     sum += (sum.dot(v) < 0 ? -1.0 : 1.0) * v;
     source_centers.push_back(image.ProjectionCenter());
     target_centers.push_back(
-        colmap::Inverse(r->target_cam_from_world).translation);
+        colmap::Inverse(r->target_cam_from_world).translation());
     mean_source += source_centers.back() / images.size();
     mean_target += target_centers.back() / images.size();
   }
@@ -307,7 +310,7 @@ ModelAlignment AlignModelsByRegisteredImages(
   ModelAlignment result;
   std::vector<TargetCorrespondences> candidates;
   for (const colmap::image_t image_id : source.RegImageIds()) {
-    if (target.ExistsImage(image_id) && target.IsImageRegistered(image_id))
+    if (target.ExistsImage(image_id) && target.Image(image_id).HasPose())
       continue;
     TargetCorrespondences c =
         FindTargetCorrespondences(target, source.Image(image_id), graph);
@@ -325,7 +328,6 @@ ModelAlignment AlignModelsByRegisteredImages(
     result.num_shared_tracks =
         static_cast<int>(candidates.front().point2D_idx.size());
   }
-  colmap::SetPRNGSeed(options.seed);
   std::vector<RegisteredImage> registered;
   int tried = 0;
   for (const TargetCorrespondences& c : candidates) {

@@ -23,7 +23,7 @@ bool WriteTaskDatabase(const std::string& source_db,
   fs::remove(temporary + "-wal", ec);
   fs::remove(temporary + "-shm", ec);
   try {
-    const colmap::Database create_schema(temporary);
+    colmap::Database::Open(temporary);  // COLMAP's schema, then closed
   } catch (const std::exception& e) {
     *error = "cannot create task database '" + temporary + "': " + e.what();
     return false;
@@ -41,9 +41,26 @@ bool WriteTaskDatabase(const std::string& source_db,
   for (size_t i = 0; i < image_ids.size(); ++i)
     ids << (i ? "," : "") << image_ids[i];
   const std::string set = "(" + ids.str() + ")";
+  // The source's schema version goes with its rows: COLMAP migrates them
+  // when it opens the task database (a 3.x database marks relative poses and
+  // E, F, H that were not estimated with identity and zeros, 4.x with NULL).
+  int source_version = 0;
+  const std::string attach =
+      "ATTACH DATABASE '" + ReadOnlySqliteUri(source_db) + "' AS src;";
+  sqlite3_stmt* version = nullptr;
+  if (sqlite3_exec(db, attach.c_str(), nullptr, nullptr, nullptr) !=
+          SQLITE_OK ||
+      sqlite3_prepare_v2(db, "PRAGMA src.user_version;", -1, &version,
+                         nullptr) != SQLITE_OK ||
+      sqlite3_step(version) != SQLITE_ROW) {
+    *error = "cannot read '" + source_db + "': " + sqlite3_errmsg(db);
+    sqlite3_finalize(version);
+    sqlite3_close(db);
+    return false;
+  }
+  source_version = sqlite3_column_int(version, 0);
+  sqlite3_finalize(version);
   const std::string sql =
-      "ATTACH DATABASE '" + ReadOnlySqliteUri(source_db) +
-      "' AS src;"
       "BEGIN;"
       "CREATE TEMP TABLE chosen(image_id INTEGER PRIMARY KEY);"
       "INSERT INTO chosen SELECT image_id FROM src.images WHERE image_id IN " +
@@ -68,7 +85,9 @@ bool WriteTaskDatabase(const std::string& source_db,
       "  WHERE pair_id % 2147483647 IN chosen AND pair_id / 2147483647 IN "
       "chosen;"
       "COMMIT;"
-      "DETACH DATABASE src;";
+      "DETACH DATABASE src;"
+      "PRAGMA user_version = " +
+      std::to_string(source_version) + ";";
   char* message = nullptr;
   const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &message);
   if (rc != SQLITE_OK) {
@@ -168,9 +187,11 @@ std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
     std::string* error) {
   if (!WriteTaskDatabase(source_db, image_ids, task_db, error)) return nullptr;
   try {
-    const colmap::Database database(task_db);
-    return colmap::DatabaseCache::Create(database, min_num_matches,
-                                         ignore_watermarks, {});
+    colmap::DatabaseCache::Options options;
+    options.min_num_matches = min_num_matches;
+    options.ignore_watermarks = ignore_watermarks;
+    return colmap::DatabaseCache::Create(*colmap::Database::Open(task_db),
+                                         options);
   } catch (const std::exception& e) {  // COLMAP's Database on a full disk
     *error = "cannot load task database '" + task_db + "': " + e.what();
     return nullptr;

@@ -10,9 +10,11 @@
 
 namespace tmr {
 
-// Writes a COLMAP database (schema of COLMAP 3.10, created by COLMAP's
-// Database class) that holds only the given images of `source_db`: their
-// cameras, images, keypoints and the two-view geometries among them. Image
+// Writes a COLMAP database (schema created by COLMAP's Database class,
+// version number of the source, so that COLMAP migrates a 3.x source's rows
+// when it opens it) that holds only the given images of `source_db`: their
+// cameras, images, keypoints and the two-view geometries among them (rigs
+// and frames: none, COLMAP makes trivial ones when it loads). Image
 // and camera ids are kept, so models of a task database fit the source. The
 // source is attached read-only and never modified; the task database is
 // written under a temporary name and renamed when complete. A reconstruction

@@ -67,18 +67,17 @@ colmap::Reconstruction GroundTruth(
   for (int i = 0; i < num_images; ++i) {
     colmap::Camera camera = MakeCamera(intrinsics[i], intrinsics[i].focal_px);
     camera.camera_id = i + 1;
-    gt.AddCamera(camera);
+    gt.AddCameraWithTrivialRig(camera);
     colmap::Image image;
     image.SetImageId(i + 1);
     image.SetCameraId(i + 1);
     image.SetName(names[i]);
-    const Eigen::Quaterniond rotation(layout.cameras[i].cam_from_world);
-    image.CamFromWorld() = colmap::Rigid3d(
-        rotation,
-        -(layout.cameras[i].cam_from_world * layout.cameras[i].center));
     image.SetPoints2D(keypoints[i].xy);
-    gt.AddImage(std::move(image));
-    gt.RegisterImage(i + 1);
+    const Eigen::Quaterniond rotation(layout.cameras[i].cam_from_world);
+    gt.AddImageWithTrivialFrame(
+        std::move(image),
+        colmap::Rigid3d(rotation, -(layout.cameras[i].cam_from_world *
+                                    layout.cameras[i].center)));
   }
   // Tracks: detections that take part in a true verified match.
   std::vector<std::vector<bool>> matched(num_images);
@@ -218,33 +217,44 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
       synthetic::MatchKeypoints(layout, points, keypoints, options);
 
   {
-    colmap::Database database(database_path);
-    colmap::DatabaseTransaction transaction(&database);
+    // As COLMAP's feature extraction writes them: camera, its rig, image,
+    // the image's frame.
+    const std::shared_ptr<colmap::Database> database =
+        colmap::Database::Open(database_path);
+    colmap::DatabaseTransaction transaction(database.get());
     for (int i = 0; i < num_images; ++i) {
-      const colmap::camera_t camera_id =
-          database.WriteCamera(MakeCamera(intrinsics[i], prior_focal[i]));
+      colmap::Camera camera = MakeCamera(intrinsics[i], prior_focal[i]);
+      camera.camera_id = database->WriteCamera(camera);
+      colmap::Rig rig;
+      rig.AddRefSensor(camera.SensorId());
+      const colmap::rig_t rig_id = database->WriteRig(rig);
       colmap::Image image;
       image.SetName(names[i]);
-      image.SetCameraId(camera_id);
-      const colmap::image_t image_id = database.WriteImage(image);
+      image.SetCameraId(camera.camera_id);
+      const colmap::image_t image_id = database->WriteImage(image);
+      image.SetImageId(image_id);
+      colmap::Frame frame;
+      frame.SetRigId(rig_id);
+      frame.AddDataId(image.DataId());
+      database->WriteFrame(frame);
       colmap::FeatureKeypoints feature_keypoints;
       feature_keypoints.reserve(keypoints[i].xy.size());
       for (const Eigen::Vector2d& xy : keypoints[i].xy) {
         feature_keypoints.emplace_back(xy.x(), xy.y());
       }
-      database.WriteKeypoints(image_id, feature_keypoints);
+      database->WriteKeypoints(image_id, feature_keypoints);
     }
     for (const ImagePairMatches& pair : pairs) {
       const int n1 = keypoints[pair.image1].xy.size();
       const int n2 = keypoints[pair.image2].xy.size();
-      database.WriteMatches(pair.image1 + 1, pair.image2 + 1,
+      database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
                             RawMatches(pair, n1, n2, options));
       colmap::TwoViewGeometry geometry;
       geometry.config = colmap::TwoViewGeometry::CALIBRATED;
       for (const auto& m : pair.inliers) {
         geometry.inlier_matches.emplace_back(m.keypoint1, m.keypoint2);
       }
-      database.WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1, geometry);
+      database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1, geometry);
     }
   }
 
