@@ -35,12 +35,8 @@ class BlockAdjustmentTest : public ::testing::Test {
     std::string error;
     dir_ = WriteTestScene("block_adjustment_test", options, &error);
     ASSERT_FALSE(dir_.empty()) << error;
-    colmap::DatabaseCache::Options cache_options;
-    cache_options.min_num_matches = 15;
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
-        colmap::DatabaseCache::Create(
-            *colmap::Database::Open((dir_ / "database.db").string()),
-            cache_options));
+        LoadTestCache(dir_ / "database.db"));
     gt_ = new colmap::Reconstruction(Matched(
         ReadModel((dir_ / "gt").string()), *(*cache_)->CorrespondenceGraph()));
   }
@@ -140,8 +136,8 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
   adjustments[2].longest_tracks_per_image = 250;
   for (int i = 0; i < kRuns; ++i) {
     const auto model = MisalignedHalves();
-    reports[i] = RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(),
-                                   adjustments[i], model);
+    reports[i] = RefineMergedModel(
+        *cache_, colmap::IncrementalPipelineOptions(), adjustments[i], model);
     after[i] = EvaluateReconstruction(*gt_, *model, {});
     EXPECT_EQ(after[i].num_registered_images, gt_->NumRegImages());
     EXPECT_FALSE(after[i].wrong_merge);
@@ -191,8 +187,7 @@ TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
   EXPECT_EQ(report.find("round 6"), std::string::npos) << report;
   EXPECT_EQ(report_once.find("changed observations:"), std::string::npos)
       << report_once;
-  EXPECT_NE(report.find("changed observations:"), std::string::npos)
-      << report;
+  EXPECT_NE(report.find("changed observations:"), std::string::npos) << report;
   // More observations in fewer tracks, and poses no worse.
   EXPECT_LT(repeated->NumPoints3D(), once->NumPoints3D());
   const ModelEvaluation a = EvaluateReconstruction(*gt_, *once, {});

@@ -197,7 +197,7 @@ TEST_F(MatchGraphColmapTest, DatabaseIsByteIdenticalAfterReading) {
 TEST_F(MatchGraphColmapTest, ReadsDatabaseThatColmapHoldsOpen) {
   WriteHandMadeDatabase();
   const std::shared_ptr<colmap::Database> database =
-        colmap::Database::Open(path_.string());
+      colmap::Database::Open(path_.string());
   TwoViewGeometry geometry;
   geometry.config = TwoViewGeometry::CALIBRATED;
   geometry.inlier_matches = Diagonal(0, 25);
@@ -262,7 +262,7 @@ TEST_F(MatchGraphColmapTest, SynthesizedDatasetAgreesWithColmapReader) {
   ASSERT_EQ(graph.NumImages(), 12);
 
   const std::shared_ptr<colmap::Database> database =
-        colmap::Database::Open(path_.string());
+      colmap::Database::Open(path_.string());
   std::map<colmap::image_t, std::set<colmap::point2D_t>> used;
   std::map<std::pair<int, int>, int> inliers;
   for (const auto& [pair_id, geometry] : database->ReadTwoViewGeometries()) {

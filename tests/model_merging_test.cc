@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <unordered_set>
 
+#include "controllers/cluster_merge.h"
 #include "controllers/scene_assembly.h"
 #include "evaluation/evaluate_reconstruction.h"
 #include "sfm/model_merging.h"
@@ -38,12 +39,8 @@ class ModelMergingTest : public ::testing::Test {
     dir_ = WriteTestScene("model_merging_test", options, &error);
     ASSERT_FALSE(dir_.empty()) << error;
     gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
-    colmap::DatabaseCache::Options cache_options;
-    cache_options.min_num_matches = 15;
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
-        colmap::DatabaseCache::Create(
-            *colmap::Database::Open((dir_ / "database.db").string()),
-            cache_options));
+        LoadTestCache(dir_ / "database.db"));
   }
   static void TearDownTestSuite() {
     delete gt_;
@@ -151,13 +148,12 @@ TEST_F(ModelMergingTest, ASourceWronglyPutTogetherDoesNotAlignByImages) {
   colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
   for (size_t i = half; i < place.size(); ++i) {
     const double angle = (i % 2 ? 1 : -1) * 0.05 * (i - half + 1);
-    SetPoseAndRegister(
-        place[i],
-        colmap::Rigid3d(Eigen::Quaterniond(
-                            Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())),
-                        Eigen::Vector3d(0.3 * angle, 0, 0)) *
-            source.Image(place[i]).CamFromWorld(),
-        &source);
+    SetPoseAndRegister(place[i],
+                       colmap::Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(
+                                           angle, Eigen::Vector3d::UnitZ())),
+                                       Eigen::Vector3d(0.3 * angle, 0, 0)) *
+                           source.Image(place[i]).CamFromWorld(),
+                       &source);
   }
   const ModelAlignment a = AlignModelsByRegisteredImages(
       target, source, *(*cache_)->CorrespondenceGraph(),

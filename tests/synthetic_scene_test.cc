@@ -206,7 +206,8 @@ TEST_F(SyntheticSceneTest, RealismFeatures) {
   for (const auto& [pair_id, matches] : raw) {
     num_raw += matches.size();
     const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
-    num_inliers += database->ReadTwoViewGeometry(id1, id2).inlier_matches.size();
+    num_inliers +=
+        database->ReadTwoViewGeometry(id1, id2).inlier_matches.size();
   }
   EXPECT_GT(num_raw, num_inliers * 1.2);
 

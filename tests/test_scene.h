@@ -2,10 +2,13 @@
 // A tmr_synth scene for a test suite's fixture.
 #pragma once
 
+#include <colmap/scene/database.h>
+#include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
 #include <unistd.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <unordered_set>
 
@@ -30,6 +33,16 @@ inline std::filesystem::path WriteTestScene(
     return {};
   }
   return dir;
+}
+
+// COLMAP's correspondences of a test database, loaded as COLMAP's mapper
+// loads them (pairs of at least 15 verified matches).
+inline std::shared_ptr<colmap::DatabaseCache> LoadTestCache(
+    const std::filesystem::path& database) {
+  colmap::DatabaseCache::Options options;
+  options.min_num_matches = 15;
+  return colmap::DatabaseCache::Create(
+      *colmap::Database::Open(database.string()), options);
 }
 
 // What a mapper that placed a group of photos badly leaves: the images in

@@ -56,7 +56,8 @@ void WriteGraphDatabase(const std::string& path, int n, int nearest) {
   for (int i = 0; i < n; ++i)
     bucket[cell(xy[i].first) * cells + cell(xy[i].second)].push_back(i);
 
-  const std::shared_ptr<colmap::Database> database = colmap::Database::Open(path);
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(path);
   colmap::DatabaseTransaction transaction(database.get());
   for (int i = 0; i < n; ++i) {
     const auto camera_id =
@@ -66,7 +67,7 @@ void WriteGraphDatabase(const std::string& path, int n, int nearest) {
     image.SetName("img" + std::to_string(i) + ".jpg");
     image.SetCameraId(camera_id);
     database->WriteKeypoints(database->WriteImage(image),
-                            colmap::FeatureKeypoints(kKeypoints));
+                             colmap::FeatureKeypoints(kKeypoints));
   }
   std::uniform_int_distribution<int> keypoint(0, kKeypoints - 1);
   for (int i = 0; i < n; ++i) {

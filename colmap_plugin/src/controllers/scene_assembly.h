@@ -29,41 +29,12 @@ int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
 // Orders models by registered images, largest first.
 void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models);
 
-// The image-cluster model of a kernel (paper Sec. 5.2): its kernel model
-// with each leaf model appended, then refined once.
-struct ClusterMerge {
-  struct LeftOut {
-    int leaf;            // index into the leaf models
-    std::string reason;  // why it was not appended
-  };
-  std::shared_ptr<colmap::Reconstruction> model;
-  int num_merged = 0;             // leaf models appended
-  std::vector<LeftOut> left_out;  // leaf models not appended
-  std::string track_fit;   // per appended leaf: shared tracks that reproject
-  std::string adjustment;  // summary of the refinement, if any
-};
-
-// Each leaf model extends a copy of the kernel model, but the mapper
-// normalises every model after global adjustment, so a leaf model has its
-// own frame: it is aligned on the kernel images both share with COLMAP's
-// reprojection-verified alignment and appended. The alignment is then
-// checked on the leaf's own images as scene merges are
-// (FitSharedTracks): at least half of their tracks that the cluster model
-// reconstructs must reproject, since a leaf that a mapper placed badly
-// still aligns on the kernel images it holds fixed. A leaf that fails
-// either test is left out; its images go to completion.
-ClusterMerge MergeLeafModels(const std::string& kernel_model,
-                             const std::vector<std::string>& leaf_models,
-                             std::shared_ptr<const colmap::DatabaseCache> cache,
-                             const colmap::IncrementalPipelineOptions& mapper,
-                             int min_shared_tracks,
-                             const MergedModelAdjustment& adjustment);
-
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
 // (sfm/model_merging.h) or by images registered on the scene's points
-// (sfm/registration_alignment.h), then COLMAP's mapper completes them with the images
-// no model holds, and maps from scratch what is still left. How two models
+// (sfm/registration_alignment.h), then COLMAP's mapper completes them with the
+// images no model holds, and maps from scratch what is still left (the
+// image-cluster models come from controllers/cluster_merge.h). How two models
 // are linked and aligned (Links, LinkedScenes, Align, WeakLinks) is in
 // scene_links.cc.
 class SceneAssembler {

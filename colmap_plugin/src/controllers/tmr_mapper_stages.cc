@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "controllers/cluster_merge.h"
 #include "controllers/scene_assembly.h"
 #include "controllers/tmr_mapper_support.h"
 #include "sfm/reconstruction_task.h"

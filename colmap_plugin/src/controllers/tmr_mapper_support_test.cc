@@ -45,7 +45,7 @@ TEST(DatabaseContentHash, IgnoresCommitsThatChangeNoRowAndSeesNewMatches) {
 
   {
     const std::shared_ptr<colmap::Database> database =
-      colmap::Database::Open(path.string());
+        colmap::Database::Open(path.string());
     colmap::TwoViewGeometry geometry;
     geometry.config = colmap::TwoViewGeometry::CALIBRATED;
     geometry.inlier_matches = colmap::FeatureMatches(15);

@@ -135,8 +135,8 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
   colmap::Sim3d ref_from_model;
   std::vector<char> inliers;
   if (!AlignCentres(model_centres, reference_centres,
-                    options.inlier_threshold * eval.scene_scale, 3, options.seed,
-                    &ref_from_model, &inliers)) {
+                    options.inlier_threshold * eval.scene_scale, 3,
+                    options.seed, &ref_from_model, &inliers)) {
     return eval;
   }
   eval.aligned = true;
@@ -176,8 +176,7 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
       AlignCentres(displaced_model, displaced_reference,
                    options.inlier_threshold * eval.scene_scale,
                    options.min_wrong_merge_images, options.seed,
-                   &part_from_model,
-                   &part_inliers)) {
+                   &part_from_model, &part_inliers)) {
     eval.wrong_merge = true;
     std::vector<double> offsets;
     for (size_t k = 0; k < displaced_model.size(); ++k) {
@@ -224,8 +223,7 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
   try {
     const std::shared_ptr<colmap::Database> database =
         colmap::Database::Open(scratch.string());
-    result =
-        CheckMatchConsistency(model, *database, MatchConsistencyOptions());
+    result = CheckMatchConsistency(model, *database, MatchConsistencyOptions());
   } catch (const std::exception& e) {
     error = e.what();
   }

@@ -57,8 +57,10 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
         ++result.num_in_common_track;
         continue;
       }
-      const std::optional<Eigen::Vector2d> cam_point1 = camera1.CamFromImg(p1.xy);
-      const std::optional<Eigen::Vector2d> cam_point2 = camera2.CamFromImg(p2.xy);
+      const std::optional<Eigen::Vector2d> cam_point1 =
+          camera1.CamFromImg(p1.xy);
+      const std::optional<Eigen::Vector2d> cam_point2 =
+          camera2.CamFromImg(p2.xy);
       Eigen::Vector3d xyz;
       // A match behind a camera cannot be placed at all: a wrong match
       // consistent with the epipolar geometry, not evidence against poses.

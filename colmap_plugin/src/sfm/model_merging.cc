@@ -329,10 +329,9 @@ std::string RefineMergedModel(
         changed < adjustment.max_refinement_change * num_observations)
       break;
   }
-  if (adjustment.enabled && adjustment.adjust_after_last_change &&
-      rounds > 1 && changed > 0) {
-    report += "; after " + std::to_string(changed) +
-              " changed observations: " +
+  if (adjustment.enabled && adjustment.adjust_after_last_change && rounds > 1 &&
+      changed > 0) {
+    report += "; after " + std::to_string(changed) + " changed observations: " +
               AdjustMergedBundle(mapper_options, adjustment, &mapper);
     filtered += mapper.FilterPoints(mapper_options.Mapper());
   }

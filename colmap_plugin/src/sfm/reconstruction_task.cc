@@ -188,13 +188,13 @@ std::string DescribeConsistency(const MatchConsistency& c) {
 // other candidate pair. A redo replaces the model when it contradicts fewer
 // matches and registers at least 90% as many images; the first consistent
 // one ends the search. Appends what happened to `how`.
-void RedoIfInconsistent(const colmap::IncrementalPipelineOptions& mapper_options,
-                        const std::string& task_database,
-                        const std::vector<std::pair<int, int>>& candidate_pairs,
-                        const std::pair<int, int>& initial_pair,
-                        const MatchConsistencyOptions& check,
-                        std::shared_ptr<colmap::Reconstruction>* model,
-                        std::string* how) {
+void RedoIfInconsistent(
+    const colmap::IncrementalPipelineOptions& mapper_options,
+    const std::string& task_database,
+    const std::vector<std::pair<int, int>>& candidate_pairs,
+    const std::pair<int, int>& initial_pair,
+    const MatchConsistencyOptions& check,
+    std::shared_ptr<colmap::Reconstruction>* model, std::string* how) {
   const auto consistency = [&](const colmap::Reconstruction& m) {
     // The task's own database (COLMAP writes to what it opens).
     return CheckMatchConsistency(m, *colmap::Database::Open(task_database),
@@ -244,9 +244,7 @@ ReconstructionTaskResult RunReconstructionTask(
   const auto start = std::chrono::steady_clock::now();
   ReconstructionTaskResult result;
   std::vector<colmap::Image> images;
-  {
-    images = colmap::Database::Open(task_database)->ReadAllImages();
-  }
+  { images = colmap::Database::Open(task_database)->ReadAllImages(); }
   result.num_images = static_cast<int>(images.size());
   // With a base model only one attempt makes sense; without, each initial
   // pair in turn and then COLMAP's own choice.

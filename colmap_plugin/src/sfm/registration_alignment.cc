@@ -188,15 +188,14 @@ bool RefineOnObservations(const colmap::Reconstruction& target,
     for (const auto& [idx, point3D_id] : r.inliers) {
       const std::optional<Eigen::Vector2d> normalized =
           camera.CamFromImg(image.Point2D(idx).xy);
-      if (!normalized || SourceReprojectionError(target, source, r, idx,
-                                                 point3D_id,
-                                                 *source_from_target) > max_px)
+      if (!normalized ||
+          SourceReprojectionError(target, source, r, idx, point3D_id,
+                                  *source_from_target) > max_px)
         continue;
       problem.AddResidualBlock(
           new ceres::AutoDiffCostFunction<SimilarityReprojectionCost, 2, 4, 3,
                                           1>(new SimilarityReprojectionCost(
-              target.Point3D(point3D_id).xyz,
-              *normalized, image.CamFromWorld(),
+              target.Point3D(point3D_id).xyz, *normalized, image.CamFromWorld(),
               camera.MeanFocalLength())),
           new ceres::HuberLoss(1.0), rotation.coeffs().data(),
           translation.data(), &log_scale);
@@ -231,9 +230,8 @@ bool SimilarityFromPoses(const colmap::Reconstruction& source,
   std::vector<Eigen::Vector3d> source_centers, target_centers;
   for (const RegisteredImage* r : images) {
     const colmap::Image& image = source.Image(r->image_id);
-    const Eigen::Quaterniond q =
-        r->target_cam_from_world.rotation().inverse() *
-        image.CamFromWorld().rotation();
+    const Eigen::Quaterniond q = r->target_cam_from_world.rotation().inverse() *
+                                 image.CamFromWorld().rotation();
     const Eigen::Vector4d v = q.coeffs();
     sum += (sum.dot(v) < 0 ? -1.0 : 1.0) * v;
     source_centers.push_back(image.ProjectionCenter());

@@ -44,7 +44,6 @@ bool WriteTaskDatabase(const std::string& source_db,
   // The source's schema version goes with its rows: COLMAP migrates them
   // when it opens the task database (a 3.x database marks relative poses and
   // E, F, H that were not estimated with identity and zeros, 4.x with NULL).
-  int source_version = 0;
   const std::string attach =
       "ATTACH DATABASE '" + ReadOnlySqliteUri(source_db) + "' AS src;";
   sqlite3_stmt* version = nullptr;
@@ -58,7 +57,7 @@ bool WriteTaskDatabase(const std::string& source_db,
     sqlite3_close(db);
     return false;
   }
-  source_version = sqlite3_column_int(version, 0);
+  const int source_version = sqlite3_column_int(version, 0);
   sqlite3_finalize(version);
   const std::string sql =
       "BEGIN;"

@@ -248,13 +248,14 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
       const int n1 = keypoints[pair.image1].xy.size();
       const int n2 = keypoints[pair.image2].xy.size();
       database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
-                            RawMatches(pair, n1, n2, options));
+                             RawMatches(pair, n1, n2, options));
       colmap::TwoViewGeometry geometry;
       geometry.config = colmap::TwoViewGeometry::CALIBRATED;
       for (const auto& m : pair.inliers) {
         geometry.inlier_matches.emplace_back(m.keypoint1, m.keypoint2);
       }
-      database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1, geometry);
+      database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1,
+                                     geometry);
     }
   }
 
