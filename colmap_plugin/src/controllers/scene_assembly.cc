@@ -204,7 +204,7 @@ SceneAssembler::MergeScenes(
 void SceneAssembler::CompleteScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
   SortBySize(scenes);
-  const auto colmap_options = ColmapOptions(o_.mapper, num_threads_);
+  const auto colmap_options = ColmapOptions(o_, num_threads_);
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
   const auto triangulation = colmap_options.Triangulation();
   const auto local_ba = colmap_options.LocalBundleAdjustment();
@@ -314,7 +314,7 @@ void SceneAssembler::Refine(
   adjustment.only_images = only_images;
   adjustment.adjust_after_last_change = !while_merging && only_images.empty();
   const std::string report = RefineMergedModel(
-      cache_, ColmapOptions(o_.mapper, num_threads_), adjustment, scene);
+      cache_, ColmapOptions(o_, num_threads_), adjustment, scene);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->NumRegImages());
   const bool full =
@@ -337,7 +337,7 @@ bool SceneAssembler::ReconstructLeftovers(
   const auto start = Clock::now();
   const auto held = HeldImageNames(*scenes);
   auto options = std::make_shared<colmap::IncrementalPipelineOptions>(
-      ColmapOptions(o_.mapper, num_threads_));
+      ColmapOptions(o_, num_threads_));
   options->extract_colors = false;
   for (const std::string& name : image_names_) {
     if (!held.count(name)) options->image_names.push_back(name);

@@ -196,7 +196,7 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
 bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
                               TmrTaskReport* row, std::string* error) const {
   colmap::IncrementalPipelineOptions mapper =
-      ColmapOptions(o_.mapper, num_threads);
+      ColmapOptions(o_, num_threads);
   mapper.ba_global_frames_ratio = o_.task_ba_global_ratio;
   mapper.ba_global_points_ratio = o_.task_ba_global_ratio;
   const TmrKernelNode& node = tree_.kernels.at(task.kernel);
@@ -287,7 +287,7 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
   }
   const ClusterMerge merge = MergeLeafModels(
       work_.KernelModel(k), leaf_models, std::move(cache),
-      ColmapOptions(o_.mapper, num_threads), o_.merge_min_shared_tracks,
+      ColmapOptions(o_, num_threads), o_.merge_min_shared_tracks,
       MergedAdjustment(o_, /*while_merging=*/false));
   ReleaseFreedMemory();
   for (const auto& [i, reason] : merge.left_out) {

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -19,7 +20,8 @@
 namespace tmr {
 
 colmap::IncrementalPipelineOptions ColmapOptions(
-    const MapperPassThroughOptions& m, int num_threads) {
+    const TmrMapperOptions& options, int num_threads) {
+  const MapperPassThroughOptions& m = options.mapper;
   colmap::IncrementalPipelineOptions o;
   o.min_num_matches = m.min_num_matches;
   o.ignore_watermarks = m.ignore_watermarks;
@@ -42,6 +44,8 @@ colmap::IncrementalPipelineOptions ColmapOptions(
   o.ba_local_max_refinements = m.ba_local_max_refinements;
   o.ba_local_function_tolerance = m.ba_local_function_tolerance;
   o.num_threads = num_threads;
+  o.random_seed = static_cast<int>(options.tree.seed %
+                                   std::numeric_limits<int>::max());
   return o;
 }
 

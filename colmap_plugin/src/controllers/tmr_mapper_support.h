@@ -15,9 +15,11 @@
 
 namespace tmr {
 
-// COLMAP's mapper options with tmr_mapper's pass-through values.
+// COLMAP's mapper options with tmr_mapper's pass-through values, seeded
+// with options.tree.seed (COLMAP 4's random_seed: the same seed gives the
+// same models).
 colmap::IncrementalPipelineOptions ColmapOptions(
-    const MapperPassThroughOptions& m, int num_threads);
+    const TmrMapperOptions& options, int num_threads);
 
 // The bundle adjustment of a merged model that the options ask for: the
 // full one (an image-cluster model, a scene's last refinement), or, for the

@@ -1,0 +1,38 @@
+# The same database, options and --Tmr.seed give the same models (issue 24,
+# item 5): two tmr_mapper runs with two threads write byte-identical model
+# files, model by model.
+file(REMOVE_RECURSE ${WORK_DIR})
+include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
+
+# Five linked places of 40 photos: kernels, leaves and merges all run.
+run(${TMR_SYNTH} --database_path ${WORK_DIR}/database.db --model_path ${WORK_DIR}/gt
+    --cameras_per_place 40 --seed 2)
+foreach(r 1 2)
+  run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
+      --output_path ${WORK_DIR}/run${r} --Mapper.num_threads 2 --Tmr.seed 11)
+endforeach()
+
+file(READ ${WORK_DIR}/run1/report.json report1)
+file(READ ${WORK_DIR}/run2/report.json report2)
+string(JSON sizes1 GET "${report1}" model_sizes)
+string(JSON sizes2 GET "${report2}" model_sizes)
+if(NOT sizes1 STREQUAL sizes2)
+  message(FATAL_ERROR "the two runs' models differ: ${sizes1} vs ${sizes2}")
+endif()
+string(JSON num_models LENGTH "${report1}" model_sizes)
+math(EXPR last "${num_models} - 1")
+foreach(k RANGE ${last})
+  foreach(file cameras.bin images.bin points3D.bin rigs.bin frames.bin)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+                    ${WORK_DIR}/run1/${k}/${file} ${WORK_DIR}/run2/${k}/${file}
+                    RESULT_VARIABLE differ)
+    if(differ)
+      # Say by how much the images moved, for the failure message.
+      execute_process(COMMAND ${TMR_EVAL} --gt ${WORK_DIR}/run1/${k}
+                      --model ${WORK_DIR}/run2/${k} OUTPUT_VARIABLE eval)
+      message(FATAL_ERROR "model ${k}: ${file} differs between two runs "
+                          "with the same seed:\n${eval}")
+    endif()
+  endforeach()
+endforeach()
+message(STATUS "${num_models} models, identical in both runs")
