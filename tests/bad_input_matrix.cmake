@@ -49,6 +49,10 @@ function(run_case name tool db expect)
   if(EXISTS ${db} AND NOT IS_DIRECTORY ${db})
     file(SHA256 ${db} hash_before)
   endif()
+  set(wal_hash_before "")
+  if(EXISTS ${db}-wal AND NOT IS_DIRECTORY ${db}-wal)
+    file(SHA256 ${db}-wal wal_hash_before)
+  endif()
   execute_process(COMMAND ${wrapper} ${command} ${args} TIMEOUT ${TIMEOUT}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   math(EXPR n "${num_cases} + 1")
@@ -74,6 +78,12 @@ function(run_case name tool db expect)
     file(SHA256 ${db} hash_after)
     if(NOT hash_after STREQUAL hash_before)
       set(problem "${problem} the input database changed")
+    endif()
+  endif()
+  if(wal_hash_before)
+    file(SHA256 ${db}-wal wal_hash_after)
+    if(NOT wal_hash_after STREQUAL wal_hash_before)
+      set(problem "${problem} the input's -wal file changed")
     endif()
   endif()
   string(REGEX REPLACE "\n$" "" shown "${err}")
@@ -145,6 +155,62 @@ foreach(name keypoints_truncated keypoints_rows_too_large match_beyond_keypoints
   run_case(${name} partition ${WORK_DIR}/${name}.db any)
   run_case(${name} mapper ${WORK_DIR}/${name}.db error)
 endforeach()
+
+# COLMAP 4's rig and frame tables, broken: tmr does not read rigs and
+# frames (its tasks get trivial ones), so these map as the good database
+# does. NULL where data is required: a clear error; NULL matrices and
+# relative poses (4.x writes them for what it did not estimate): a result.
+make_db(frames_without_rig "DELETE FROM rigs;")
+make_db(frame_data_of_missing_image "INSERT INTO frame_data VALUES(1, 99999, 1, 0);")
+make_db(sensor_of_missing_rig "INSERT INTO rig_sensors VALUES(999, 77, 0, NULL);")
+make_db(null_matrices "UPDATE two_view_geometries SET F = NULL, E = NULL, H = NULL,
+  qvec = NULL, tvec = NULL;")
+make_db(null_inlier_data "UPDATE two_view_geometries SET data = NULL;")
+make_db(null_keypoint_data "UPDATE keypoints SET data = NULL WHERE image_id = 1;")
+make_db(null_camera_params "UPDATE cameras SET params = NULL;")
+foreach(name frames_without_rig frame_data_of_missing_image sensor_of_missing_rig
+        null_matrices)
+  run_both(${name} ok)
+endforeach()
+run_both(null_inlier_data error)
+foreach(name null_keypoint_data null_camera_params)
+  run_case(${name} partition ${WORK_DIR}/${name}.db any)
+  run_case(${name} mapper ${WORK_DIR}/${name}.db error)
+endforeach()
+
+# A COLMAP 4 database in WAL mode whose verified pairs sit only in its -wal
+# file (the writer was killed before a checkpoint): read through the WAL, a
+# result, neither file changed. Without its -wal file the database holds no
+# pairs (a clear error for the mapper); a -wal that cannot be read (a
+# folder in its place) is a clear error, not a silent read of the database
+# file without its changes.
+if(PYTHON3)
+  execute_process(COMMAND ${PYTHON3} -c
+    "import shutil, sqlite3, sys
+good, work = sys.argv[1], sys.argv[2]
+shutil.copy(good, work + '/wal_writer.db')
+c = sqlite3.connect(work + '/wal_writer.db', isolation_level=None)
+c.execute('PRAGMA journal_mode = WAL')
+c.execute('DELETE FROM two_view_geometries')
+c.execute('PRAGMA wal_checkpoint(TRUNCATE)')
+c.execute('PRAGMA wal_autocheckpoint = 0')
+c.execute('ATTACH DATABASE ? AS good', (good,))
+c.execute('INSERT INTO two_view_geometries SELECT * FROM good.two_view_geometries')
+c.execute('DETACH DATABASE good')
+for name in ('wal_pending', 'wal_missing', 'wal_unreadable'):
+    shutil.copy(work + '/wal_writer.db', work + '/' + name + '.db')
+shutil.copy(work + '/wal_writer.db-wal', work + '/wal_pending.db-wal')
+c.close()"
+    ${good} ${WORK_DIR} RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "cannot make the WAL databases: ${err}")
+  endif()
+  file(MAKE_DIRECTORY ${WORK_DIR}/wal_unreadable.db-wal)
+  run_both(wal_pending ok)
+  run_case(wal_missing partition ${WORK_DIR}/wal_missing.db ok)
+  run_case(wal_missing mapper ${WORK_DIR}/wal_missing.db error)
+  run_both(wal_unreadable error)
+endif()
 
 # Valid but degenerate.
 make_db(no_matches "DELETE FROM two_view_geometries; DELETE FROM matches;")

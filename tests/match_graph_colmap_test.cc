@@ -233,14 +233,20 @@ TEST_F(MatchGraphColmapTest, ReadsColmap38Schema) {
   EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
 }
 
-// COLMAP 4's schema with a rig and a frame (the tables 3.12 introduced).
+// COLMAP 4's schema with a rig and a frame (the tables 3.12 introduced),
+// and a pair verified by COLMAP 4's rig verification (CALIBRATED_RIG),
+// which counts as COLMAP's mapper counts it.
 TEST_F(MatchGraphColmapTest, ReadsRigsAndFrames) {
   WriteHandMadeDatabase();
   ExecSql(path_,
           "INSERT INTO rigs VALUES(1, 1, 0);"
           "INSERT INTO frames VALUES(1, 1);"
-          "INSERT INTO frame_data VALUES(1, 1, 1, 0);");
-  EXPECT_EQ(ReadMatchGraph(path_.string()).NumPairs(), 3);
+          "INSERT INTO frame_data VALUES(1, 1, 1, 0);"
+          "UPDATE two_view_geometries SET config = 9 "
+          "  WHERE pair_id = 2147483647 * 1 + 2;");
+  const MatchGraph graph = ReadMatchGraph(path_.string());
+  ASSERT_EQ(graph.NumPairs(), 3);
+  EXPECT_EQ(graph.pairs[0].config, 9);
 }
 
 // SynthesizeDataset writes exhaustive matches between all observations of

@@ -19,7 +19,7 @@ file(REMOVE_RECURSE ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
 
 run(${TMR_RECONSTRUCT} ${set_dir}/images ${WORK_DIR} --num_threads 2
-    --SiftExtraction.max_image_size ${MAX_IMAGE_SIZE})
+    --FeatureExtraction.max_image_size ${MAX_IMAGE_SIZE})
 foreach(file database.db summary.txt sparse/0/images.bin sparse/partition.png)
   if(NOT EXISTS ${WORK_DIR}/${file})
     message(FATAL_ERROR "missing output ${file}")

@@ -40,11 +40,11 @@ int main(int argc, char** argv) {
   add("ImageReader.camera_model", &o.camera_model, "COLMAP camera model");
   add("ImageReader.single_camera", &o.single_camera,
       "one camera for all photos");
-  add("SiftExtraction.max_image_size", &o.max_image_size,
+  add("FeatureExtraction.max_image_size", &o.max_image_size,
       "photos are downscaled to this size for SIFT");
   add("SiftExtraction.max_num_features", &o.max_num_features,
       "SIFT features per photo");
-  add("SiftMatching.guided_matching", &o.guided_matching,
+  add("FeatureMatching.guided_matching", &o.guided_matching,
       "guided matching after verification");
   add("SequentialMatching.overlap", &o.sequential_overlap,
       "neighbours each photo is matched with (sequential)");

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Mapper benchmark: stock `colmap mapper`, stock `colmap hierarchical_mapper`
-# and `tmr_mapper` on the same tmr_synth databases, in one run, with the same
-# thread count. Prints wall time, peak memory, registered images, models,
+# Mapper benchmark: stock `colmap mapper`, `colmap hierarchical_mapper`,
+# `colmap global_mapper` (all of the same COLMAP 4.1.1 build) and
+# `tmr_mapper` on the same tmr_synth databases, in one run, with the same
+# thread count. Each COLMAP tool reads its own copy of the database (COLMAP 4
+# opens a database read-write and may rewrite it); tmr_mapper reads the
+# original, read-only. Prints wall time, peak memory, registered images, models,
 # errors and wrong merges side by side (tmr_eval against the ground truth)
 # and appends them to out/bench_mapper/results.csv.
 #
@@ -13,7 +16,7 @@
 #          detection 0.35). Default: city1 places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
-# tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
+# colmap_global tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
 # tmr_mapper (e.g. "--Tmr.keep_work 1"); STOCK_CAP=SECONDS stops `colmap
 # mapper` after that long and reports the images it had registered (a
 # lower bound on its time, for scenes where it takes hours).
@@ -85,18 +88,19 @@ for scene in "${scenes[@]}"; do
     "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "$scene")
   fi
   images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
-  for tool in ${TOOLS:-colmap_mapper colmap_hierarchical tmr_mapper}; do
+  for tool in ${TOOLS:-colmap_mapper colmap_hierarchical colmap_global tmr_mapper}; do
     out="$dir/$tool"
     if [[ -n "${REUSE:-}" && -f "$out.log.time" ]]; then  # REUSE=1: keep earlier runs
       read -r wall peak < <(wall_and_peak "$out.log.time")
       score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
       continue
     fi
-    rm -rf "$out" && mkdir -p "$out"
+    rm -rf "$out" "$out.db" && mkdir -p "$out"
+    [[ $tool == tmr_mapper ]] || cp "$dir/database.db" "$out.db"  # COLMAP's own copy
     case $tool in
       colmap_mapper)
         read -r wall peak < <(timed "$out.log" ${STOCK_CAP:+timeout -s INT "$STOCK_CAP"} "$COLMAP" mapper \
-          --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
+          --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
           --Mapper.num_threads "$THREADS")
         if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
           registered=$(grep -o 'Registering image #[0-9]* ([0-9]*)' "$out.log" | tail -1 | grep -o '([0-9]*' | tr -d '(')
@@ -107,8 +111,12 @@ for scene in "${scenes[@]}"; do
         fi ;;
       colmap_hierarchical)
         read -r wall peak < <(timed "$out.log" "$COLMAP" hierarchical_mapper \
-          --database_path "$dir/database.db" --image_path "$dir/images" --output_path "$out" \
+          --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
           --Mapper.num_threads "$THREADS") ;;
+      colmap_global)
+        read -r wall peak < <(timed "$out.log" "$COLMAP" global_mapper \
+          --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
+          --GlobalMapper.num_threads "$THREADS") ;;
       tmr_mapper)
         read -r wall peak < <(timed "$out.log" "$BIN/tmr_mapper" --database_path "$dir/database.db" \
           --output_path "$out" --Mapper.num_threads "$THREADS" ${TMR_ARGS:-}) ;;
@@ -124,7 +132,7 @@ if ! command -v gnuplot >/dev/null; then
   exit 0
 fi
 mkdir -p docs/images
-for tool in colmap_mapper colmap_hierarchical tmr_mapper; do
+for tool in colmap_mapper colmap_hierarchical colmap_global tmr_mapper; do
   awk -F, -v t="$tool" 'NR > 1 && $3 == t && $1 ~ /^city/ {last[$2] = $4}
     END {for (n in last) print n, last[n], last[n] / n}' "$OUT/results.csv" |
     sort -n >"$OUT/$tool.dat"
@@ -139,10 +147,12 @@ set xlabel 'images'
 set ylabel 'wall time (s)'
 plot '$OUT/colmap_mapper.dat' using 1:2 with linespoints lw 2 title 'colmap mapper', \
      '$OUT/colmap_hierarchical.dat' using 1:2 with linespoints lw 2 title 'colmap hierarchical_mapper', \
+     '$OUT/colmap_global.dat' using 1:2 with linespoints lw 2 title 'colmap global_mapper', \
      '$OUT/tmr_mapper.dat' using 1:2 with linespoints lw 2 title 'tmr_mapper'
 set ylabel 'seconds per image'
 plot '$OUT/colmap_mapper.dat' using 1:3 with linespoints lw 2 title 'colmap mapper', \
      '$OUT/colmap_hierarchical.dat' using 1:3 with linespoints lw 2 title 'colmap hierarchical_mapper', \
+     '$OUT/colmap_global.dat' using 1:3 with linespoints lw 2 title 'colmap global_mapper', \
      '$OUT/tmr_mapper.dat' using 1:3 with linespoints lw 2 title 'tmr_mapper'
 unset multiplot
 GP

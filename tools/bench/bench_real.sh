@@ -68,7 +68,7 @@ run_case() {
   local photos; photos=$(find -L "$images" -maxdepth 1 -type f | wc -l)
   rm -rf "$dir"; mkdir -p "$dir/stock"
   "$BIN/tmr_reconstruct" "$images" "$dir/ws" --num_threads "$THREADS" \
-    --SiftExtraction.max_image_size 1600 >"$dir/reconstruct.log" 2>&1 || true
+    --FeatureExtraction.max_image_size 1600 >"$dir/reconstruct.log" 2>&1 || true
   [[ -f "$dir/ws/database.db" ]] || { echo "| $name | $photos | tmr_reconstruct failed: $(tail -1 "$dir/reconstruct.log") |"; return; }
   local wall
   wall=$(timed "$dir/tmr.log" "$BIN/tmr_mapper" --database_path "$dir/ws/database.db" \

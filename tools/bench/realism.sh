@@ -58,10 +58,10 @@ if [[ -d "$DATA" ]]; then
       rm -rf "$dir" && mkdir -p "$dir/sparse"
       echo "[$name] feature extraction, exhaustive matching, mapper"
       "$COLMAP" feature_extractor --database_path "$dir/database.db" \
-        --image_path "$set/images" --SiftExtraction.use_gpu 0 \
-        --SiftExtraction.max_image_size 1600 >"$dir/log.txt" 2>&1
+        --image_path "$set/images" --FeatureExtraction.use_gpu 0 \
+        --FeatureExtraction.max_image_size 1600 >"$dir/log.txt" 2>&1
       "$COLMAP" exhaustive_matcher --database_path "$dir/database.db" \
-        --SiftMatching.use_gpu 0 >>"$dir/log.txt" 2>&1
+        --FeatureMatching.use_gpu 0 >>"$dir/log.txt" 2>&1
       "$COLMAP" mapper --database_path "$dir/database.db" --image_path "$set/images" \
         --output_path "$dir/sparse" >>"$dir/log.txt" 2>&1
     fi

@@ -125,7 +125,7 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
   if (!colmap::ExistsCameraModelWithName(camera_model))
     return fail("unknown camera model '" + camera_model + "'");
   if (max_image_size < 16)
-    return fail("--SiftExtraction.max_image_size must be at least 16");
+    return fail("--FeatureExtraction.max_image_size must be at least 16");
   if (max_num_features < 1)
     return fail("--SiftExtraction.max_num_features must be positive");
   if (sequential_overlap < 1)

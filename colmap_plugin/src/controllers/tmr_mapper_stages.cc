@@ -50,6 +50,12 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
   const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
   if (graph.NumImages() == 0) return Fail("the database has no images", error);
   if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
+  if (const int rigs = CountMultiCameraRigs(o_.database_path);
+      rigs > 0 && progress) {
+    progress("the database has " + std::to_string(rigs) +
+             " rig(s) of several cameras: tmr maps their images as "
+             "independent cameras (it does not use rig constraints yet)");
+  }
   if (graph.NumPairs() == 0)
     return Fail("the database has no verified image pairs", error);
   tree_ = BuildTmrTree(graph, o_.tree);
@@ -195,8 +201,7 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
 
 bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
                               TmrTaskReport* row, std::string* error) const {
-  colmap::IncrementalPipelineOptions mapper =
-      ColmapOptions(o_, num_threads);
+  colmap::IncrementalPipelineOptions mapper = ColmapOptions(o_, num_threads);
   mapper.ba_global_frames_ratio = o_.task_ba_global_ratio;
   mapper.ba_global_points_ratio = o_.task_ba_global_ratio;
   const TmrKernelNode& node = tree_.kernels.at(task.kernel);

@@ -180,6 +180,23 @@ bool CheckKeypointsAndCameras(const std::string& source_db,
   return false;
 }
 
+int CountMultiCameraRigs(const std::string& source_db) {
+  sqlite3* db = nullptr;
+  sqlite3_stmt* stmt = nullptr;
+  int count = 0;
+  if (sqlite3_open_v2(ReadOnlySqliteUri(source_db).c_str(), &db,
+                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
+                      nullptr) == SQLITE_OK &&
+      sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT rig_id) FROM rig_sensors",
+                         -1, &stmt, nullptr) == SQLITE_OK &&
+      sqlite3_step(stmt) == SQLITE_ROW) {
+    count = sqlite3_column_int(stmt, 0);
+  }
+  sqlite3_finalize(stmt);
+  sqlite3_close(db);
+  return count;
+}
+
 std::shared_ptr<colmap::DatabaseCache> LoadTaskDatabaseCache(
     const std::string& source_db, const std::vector<uint32_t>& image_ids,
     const std::string& task_db, int min_num_matches, bool ignore_watermarks,

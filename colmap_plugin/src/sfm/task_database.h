@@ -31,6 +31,13 @@ bool WriteTaskDatabase(const std::string& source_db,
 // the first problem in `error`.
 bool CheckKeypointsAndCameras(const std::string& source_db, std::string* error);
 
+// The rigs of `source_db` that hold more than one camera (rigs with rows in
+// COLMAP 4's rig_sensors table, which lists the sensors besides the
+// reference one); 0 for a database without rigs (COLMAP 3.x) or that
+// cannot be read. Task databases hold no rigs: tmr maps the images of such
+// rigs as independent cameras.
+int CountMultiCameraRigs(const std::string& source_db);
+
 // COLMAP's in-memory correspondences of the given images, loaded from a
 // task database written to `task_db` (COLMAP's Database class writes to the
 // file it opens, so it never opens the input). Null with a reason in

@@ -53,6 +53,40 @@ colmap::FeatureMatches RawMatches(const ImagePairMatches& pair, int n1, int n2,
   return matches;
 }
 
+// A verified pair as COLMAP's matcher writes it: the pair's matches, with
+// the configuration and the E, F and H that COLMAP's two-view estimator
+// (EstimateCalibratedTwoViewGeometry, default options) finds on them from
+// the keypoints and the database's camera priors; no relative pose, which
+// COLMAP 4's global mapper decomposes from E itself. The matches written are
+// the scene's own, not the estimator's inlier subset, so that the match
+// statistics stay as generated. A pair the estimator rejects (the random
+// matches of a false pair) keeps CALIBRATED without matrices: as a wrong
+// pair that passed verification, whose geometry a reader fits itself.
+colmap::TwoViewGeometry VerifiedGeometry(
+    const ImagePairMatches& pair, const std::vector<colmap::Camera>& cameras,
+    const std::vector<ImageKeypoints>& keypoints, uint64_t seed) {
+  colmap::TwoViewGeometry geometry;
+  for (const auto& m : pair.inliers) {
+    geometry.inlier_matches.emplace_back(m.keypoint1, m.keypoint2);
+  }
+  colmap::TwoViewGeometryOptions options;
+  options.ransac_options.random_seed = static_cast<int>(
+      synthetic::HashUniform(seed, pair.image1, pair.image2, 0xe) * 1e9);
+  const colmap::TwoViewGeometry estimate =
+      colmap::EstimateCalibratedTwoViewGeometry(
+          cameras[pair.image1], keypoints[pair.image1].xy, cameras[pair.image2],
+          keypoints[pair.image2].xy, geometry.inlier_matches, options);
+  geometry.config = colmap::TwoViewGeometry::CALIBRATED;
+  if (estimate.config != colmap::TwoViewGeometry::DEGENERATE &&
+      estimate.config != colmap::TwoViewGeometry::UNDEFINED) {
+    geometry.config = estimate.config;
+    geometry.E = estimate.E;
+    geometry.F = estimate.F;
+    geometry.H = estimate.H;
+  }
+  return geometry;
+}
+
 // The ground truth: true cameras and poses, and the points that take part in
 // at least two matched detections.
 colmap::Reconstruction GroundTruth(
@@ -222,8 +256,11 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
     const std::shared_ptr<colmap::Database> database =
         colmap::Database::Open(database_path);
     colmap::DatabaseTransaction transaction(database.get());
+    std::vector<colmap::Camera> cameras;
+    cameras.reserve(num_images);
     for (int i = 0; i < num_images; ++i) {
-      colmap::Camera camera = MakeCamera(intrinsics[i], prior_focal[i]);
+      colmap::Camera& camera =
+          cameras.emplace_back(MakeCamera(intrinsics[i], prior_focal[i]));
       camera.camera_id = database->WriteCamera(camera);
       colmap::Rig rig;
       rig.AddRefSensor(camera.SensorId());
@@ -249,13 +286,9 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
       const int n2 = keypoints[pair.image2].xy.size();
       database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
                              RawMatches(pair, n1, n2, options));
-      colmap::TwoViewGeometry geometry;
-      geometry.config = colmap::TwoViewGeometry::CALIBRATED;
-      for (const auto& m : pair.inliers) {
-        geometry.inlier_matches.emplace_back(m.keypoint1, m.keypoint2);
-      }
-      database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1,
-                                     geometry);
+      database->WriteTwoViewGeometry(
+          pair.image1 + 1, pair.image2 + 1,
+          VerifiedGeometry(pair, cameras, keypoints, options.seed));
     }
   }
 

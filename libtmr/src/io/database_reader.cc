@@ -169,9 +169,9 @@ bool MatchGraphOptions::Check(std::string* error) const {
   if (min_num_matches < 1) return fail("min_num_matches must be >= 1");
   if (verified_configs.empty()) return fail("verified_configs is empty");
   for (const int config : verified_configs) {
-    if (config < 0 || config > 8) {
+    if (config < 0 || config > 9) {
       return fail("verified_configs holds " + std::to_string(config) +
-                  ", not a COLMAP two-view configuration (0..8)");
+                  ", not a COLMAP two-view configuration (0..9)");
     }
   }
   return true;

@@ -18,12 +18,23 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
   // A throwing constructor runs no destructor: close the handle here.
   try {
     // A database with a -wal file on a read-only folder cannot be read
-    // through the WAL; it can as an immutable file.
+    // through the WAL; it can as an immutable file when the -wal is empty.
+    // A -wal that holds changes and cannot be read is an error: the
+    // database file alone would be read without them.
     try {
       HasTable("images");
     } catch (const DatabaseError&) {
       const int code = sqlite3_errcode(db_);
       if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
+      const std::filesystem::path wal = path + "-wal";
+      std::error_code wal_ec;
+      if (std::filesystem::exists(wal, wal_ec) &&
+          (!std::filesystem::is_regular_file(wal, wal_ec) ||
+           std::filesystem::file_size(wal, wal_ec) != 0)) {
+        Fail("its write-ahead log '" + wal.string() +
+             "' holds changes that cannot be read (" + sqlite3_errmsg(db_) +
+             "): copy the database with its -wal file to a writable folder");
+      }
       sqlite3_close(db_);
       db_ = nullptr;
       Open(ReadOnlySqliteUri(path, /*force_immutable=*/true));

@@ -23,10 +23,10 @@ struct MatchGraphOptions {
 
   // COLMAP TwoViewGeometry::ConfigurationType values that count as verified.
   // Default: CALIBRATED (2), UNCALIBRATED (3), PLANAR (4), PANORAMIC (5),
-  // PLANAR_OR_PANORAMIC (6), MULTIPLE (8). WATERMARK (7) is left out, as
-  // COLMAP's mapper does with ignore_watermarks; UNDEFINED (0) and
-  // DEGENERATE (1) never count.
-  std::vector<int> verified_configs = {2, 3, 4, 5, 6, 8};
+  // PLANAR_OR_PANORAMIC (6), MULTIPLE (8), CALIBRATED_RIG (9, COLMAP 4's
+  // rig verification). WATERMARK (7) is left out, as COLMAP's mapper does
+  // with ignore_watermarks; UNDEFINED (0) and DEGENERATE (1) never count.
+  std::vector<int> verified_configs = {2, 3, 4, 5, 6, 8, 9};
 
   // Returns false (and fills `error`) for impossible values.
   bool Check(std::string* error = nullptr) const;
@@ -43,7 +43,7 @@ std::string ReadOnlySqliteUri(const std::string& path,
                               bool force_immutable = false);
 
 // Reads the verified match graph from a COLMAP database (schemas of COLMAP
-// 3.8 to 3.12+; tables that are not needed, such as rigs and frames, are
+// 3.8 to 4.x; tables that are not needed, such as rigs and frames, are
 // ignored). The file is opened read-only and is never modified.
 //
 // Reads images (id, name, camera), keypoint counts and the two-view
