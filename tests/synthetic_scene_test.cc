@@ -6,11 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
+#include "test_scene.h"
 #include "tmr/colmap/synthetic_scene.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/scene/graph_summary.h"
@@ -19,13 +18,6 @@ namespace tmr {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string ReadBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
 
 std::string Part(const std::string& name) {
   return name.substr(0, name.find('/'));
@@ -90,14 +82,14 @@ TEST_F(SyntheticSceneTest, SameSeedWritesByteIdenticalDatabase) {
   options.seed = 42;
   Write(options, "a");
   Write(options, "b");
-  EXPECT_EQ(ReadBytes(Db("a")), ReadBytes(Db("b")));
+  EXPECT_EQ(ReadFileBytes(Db("a")), ReadFileBytes(Db("b")));
   for (const char* file : {"cameras.bin", "images.bin", "points3D.bin"}) {
-    EXPECT_EQ(ReadBytes(fs::path(Gt("a")) / file),
-              ReadBytes(fs::path(Gt("b")) / file));
+    EXPECT_EQ(ReadFileBytes(fs::path(Gt("a")) / file),
+              ReadFileBytes(fs::path(Gt("b")) / file));
   }
   options.seed = 43;
   Write(options, "c");
-  EXPECT_NE(ReadBytes(Db("a")), ReadBytes(Db("c")));
+  EXPECT_NE(ReadFileBytes(Db("a")), ReadFileBytes(Db("c")));
 }
 
 TEST_F(SyntheticSceneTest, PlacesLinkedWeaklyLinkedAndUnlinked) {

@@ -13,6 +13,29 @@
 #include <sstream>
 
 namespace tmr {
+namespace {
+
+// How long a connection waits for a lock: readers of a WAL database whose
+// -shm index is missing (a writer was killed, or COLMAP holds it open) wait
+// for the one that rebuilds it, e.g. two task databases copied at once.
+constexpr int kBusyTimeoutMs = 10000;
+
+// The source database, read-only (ReadOnlySqliteUri); null when it cannot
+// be opened.
+sqlite3* OpenSourceReadOnly(const std::string& source_db) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(ReadOnlySqliteUri(source_db).c_str(), &db,
+                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
+                      nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    return nullptr;
+  }
+  sqlite3_busy_timeout(db, kBusyTimeoutMs);
+  return db;
+}
+
+}  // namespace
+
 bool WriteTaskDatabase(const std::string& source_db,
                        const std::vector<uint32_t>& image_ids,
                        const std::string& task_db, std::string* error) {
@@ -37,6 +60,7 @@ bool WriteTaskDatabase(const std::string& source_db,
     sqlite3_close(db);
     return false;
   }
+  sqlite3_busy_timeout(db, kBusyTimeoutMs);  // also for the attached source
   std::ostringstream ids;
   for (size_t i = 0; i < image_ids.size(); ++i)
     ids << (i ? "," : "") << image_ids[i];
@@ -107,15 +131,11 @@ bool WriteTaskDatabase(const std::string& source_db,
 
 bool CheckKeypointsAndCameras(const std::string& source_db,
                               std::string* error) {
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(ReadOnlySqliteUri(source_db).c_str(), &db,
-                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
-                      nullptr) != SQLITE_OK) {
-    sqlite3_close(db);
+  sqlite3* db = OpenSourceReadOnly(source_db);
+  if (db == nullptr) {
     *error = "database '" + source_db + "': cannot open";
     return false;
   }
-  sqlite3_busy_timeout(db, 10000);
   // Steps through the rows of `sql` (five integers each) until `check`
   // names a problem; returns it, or SQLite's error, or "" when all is well.
   using Row = std::array<int64_t, 5>;
@@ -181,12 +201,10 @@ bool CheckKeypointsAndCameras(const std::string& source_db,
 }
 
 int CountMultiCameraRigs(const std::string& source_db) {
-  sqlite3* db = nullptr;
+  sqlite3* db = OpenSourceReadOnly(source_db);
   sqlite3_stmt* stmt = nullptr;
   int count = 0;
-  if (sqlite3_open_v2(ReadOnlySqliteUri(source_db).c_str(), &db,
-                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
-                      nullptr) == SQLITE_OK &&
+  if (db != nullptr &&
       sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT rig_id) FROM rig_sensors",
                          -1, &stmt, nullptr) == SQLITE_OK &&
       sqlite3_step(stmt) == SQLITE_ROW) {
