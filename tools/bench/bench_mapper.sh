@@ -13,7 +13,9 @@
 #          1,800 / 3,752 images), placesN, e.g. places8 places32 (weakly linked
 #          places of about 75 images each), or plazasN, e.g. plazas8 plazas16
 #          (overlapping plazas of 120 photos whose clusters share few tracks,
-#          detection 0.35). Default: city1 places4.
+#          detection 0.35). A suffix sN picks tmr_synth's seed N (default
+#          0), e.g. city1s3 for the city block of seed 3. Default: city1
+#          places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
 # colmap_global tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
@@ -32,11 +34,14 @@ mkdir -p "$OUT"
   echo "scene,images,tool,wall_s,peak_mib,registered,largest,models,median_rot_deg,p90_rot_deg,wrong_merges" >"$OUT/results.csv"
 
 synth_args() {
-  case "$1" in
-    city*) local n=${1#city}; echo "--family city --city_blocks_x $n --city_blocks_y $n" ;;
-    places*) local n=${1#places}
+  local seed=0 scene=$1
+  if [[ $scene =~ ^(.*[0-9])s([0-9]+)$ ]]; then scene=${BASH_REMATCH[1]} seed=${BASH_REMATCH[2]}; fi
+  echo "--seed $seed"
+  case "$scene" in
+    city*) local n=${scene#city}; echo "--family city --city_blocks_x $n --city_blocks_y $n" ;;
+    places*) local n=${scene#places}
       echo "--family places --num_places $n --num_unlinked_places 0 --link_spacing 9" ;;
-    plazas*) local n=${1#plazas}
+    plazas*) local n=${scene#plazas}
       echo "--family plazas --num_places $n --cameras_per_place 120" \
         "--detection_probability 0.35 --match_probability 0.7 --match_angle_falloff_deg 12" ;;
     *) echo "unknown scene $1" >&2; exit 2 ;;
