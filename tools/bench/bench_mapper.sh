@@ -100,7 +100,7 @@ for scene in "${scenes[@]}"; do
       score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
       continue
     fi
-    rm -rf "$out" "$out.db" && mkdir -p "$out"
+    rm -rf "$out" "$out.db" "$out.db-wal" "$out.db-shm" && mkdir -p "$out"  # a stale -wal would apply to the new copy
     [[ $tool == tmr_mapper ]] || cp "$dir/database.db" "$out.db"  # COLMAP's own copy
     case $tool in
       colmap_mapper)
