@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "test_files.h"
 #include "test_scene.h"
 #include "tmr/colmap/tmr_mapper.h"
 #include "tmr/io/database_reader.h"
@@ -27,24 +28,6 @@ namespace tmr {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs `sql` on a read-write connection; the connection stays open when
-// `keep_open` is given (so that a WAL database keeps its -wal file).
-void ExecSql(const fs::path& path, const std::string& sql,
-             sqlite3** keep_open = nullptr) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-  const std::string message = error ? error : "";
-  sqlite3_free(error);
-  if (keep_open) {
-    *keep_open = db;
-  } else {
-    sqlite3_close(db);
-  }
-  ASSERT_EQ(rc, SQLITE_OK) << message;
-}
 
 // COLMAP 3.8's tables (src/base/database.cc of 3.8): pose priors in the
 // images table, no rigs, frames or pose_priors, descriptors without a type.

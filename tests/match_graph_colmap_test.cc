@@ -5,15 +5,13 @@
 #include <colmap/scene/reconstruction.h>
 #include <colmap/scene/synthetic.h>
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 
+#include "test_files.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/scene/image_graph.h"
 
@@ -25,30 +23,12 @@ using colmap::FeatureMatch;
 using colmap::FeatureMatches;
 using colmap::TwoViewGeometry;
 
-std::string ReadBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 std::set<std::string> ListDirectory(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir)) {
     names.insert(entry.path().filename().string());
   }
   return names;
-}
-
-void ExecSql(const fs::path& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-  const std::string message = error ? error : "";
-  sqlite3_free(error);
-  sqlite3_close(db);
-  ASSERT_EQ(rc, SQLITE_OK) << message;
 }
 
 // Inlier matches (k, offset + k) for k in [first, first + count).
@@ -185,10 +165,10 @@ TEST_F(MatchGraphColmapTest, OptionsChangeWhichPairsCount) {
 
 TEST_F(MatchGraphColmapTest, DatabaseIsByteIdenticalAfterReading) {
   WriteHandMadeDatabase();
-  const std::string before = ReadBytes(path_);
+  const std::string before = ReadFileBytes(path_);
   const std::set<std::string> files_before = ListDirectory(dir_);
   ReadMatchGraph(path_.string());
-  EXPECT_EQ(ReadBytes(path_), before);
+  EXPECT_EQ(ReadFileBytes(path_), before);
   EXPECT_EQ(ListDirectory(dir_), files_before);
 }
 
@@ -304,7 +284,7 @@ class CorruptDatabaseTest : public MatchGraphColmapTest {
   void ExpectError(const std::string& sql, const std::string& problem) {
     WriteHandMadeDatabase();
     ExecSql(path_, sql);
-    const std::string before = ReadBytes(path_);
+    const std::string before = ReadFileBytes(path_);
     try {
       ReadMatchGraph(path_.string());
       FAIL() << "no error after " << sql;
@@ -313,7 +293,7 @@ class CorruptDatabaseTest : public MatchGraphColmapTest {
       EXPECT_NE(message.find(path_.string()), std::string::npos) << message;
       EXPECT_NE(message.find(problem), std::string::npos) << message;
     }
-    EXPECT_EQ(ReadBytes(path_), before);
+    EXPECT_EQ(ReadFileBytes(path_), before);
   }
   // pair_id of images 1 and 2.
   static constexpr int64_t kPair12 = 2147483647LL + 2;

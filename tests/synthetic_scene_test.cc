@@ -9,7 +9,7 @@
 #include <map>
 #include <set>
 
-#include "test_scene.h"
+#include "test_files.h"
 #include "tmr/colmap/synthetic_scene.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/scene/graph_summary.h"

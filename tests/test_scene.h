@@ -8,9 +8,7 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <unordered_set>
 
@@ -35,15 +33,6 @@ inline std::filesystem::path WriteTestScene(
     return {};
   }
   return dir;
-}
-
-// The bytes of a file ("" when it cannot be read): to check that an input
-// stayed byte-identical, or that two outputs are.
-inline std::string ReadFileBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
 }
 
 // COLMAP's correspondences of a test database, loaded as COLMAP's mapper

@@ -243,8 +243,8 @@ ReconstructionTaskResult RunReconstructionTask(
     const std::string& output_model) {
   const auto start = std::chrono::steady_clock::now();
   ReconstructionTaskResult result;
-  std::vector<colmap::Image> images;
-  { images = colmap::Database::Open(task_database)->ReadAllImages(); }
+  const std::vector<colmap::Image> images =
+      colmap::Database::Open(task_database)->ReadAllImages();
   result.num_images = static_cast<int>(images.size());
   // With a base model only one attempt makes sense; without, each initial
   // pair in turn and then COLMAP's own choice.
