@@ -5,7 +5,7 @@
 # thread count. Each COLMAP tool reads its own copy of the database (COLMAP 4
 # opens a database read-write and may rewrite it); tmr_mapper reads the
 # original, read-only. Prints wall time, peak memory, registered images, models,
-# errors and wrong merges side by side (tmr_eval against the ground truth)
+# errors, displaced images and wrong merges side by side (tmr_eval against the ground truth)
 # and appends them to out/bench_mapper/results.csv.
 #
 # Usage: tools/bench/bench_mapper.sh [SCENE ...]
@@ -31,7 +31,7 @@ THREADS="${THREADS:-2}"
 [[ -x "$COLMAP" && -x "$BIN/tmr_mapper" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
 mkdir -p "$OUT"
 [[ -f "$OUT/results.csv" ]] ||
-  echo "scene,images,tool,wall_s,peak_mib,registered,largest,models,median_rot_deg,p90_rot_deg,wrong_merges" >"$OUT/results.csv"
+  echo "scene,images,tool,wall_s,peak_mib,registered,largest,models,median_rot_deg,p90_rot_deg,wrong_merges,displaced" >"$OUT/results.csv"
 
 synth_args() {
   local seed=0 scene=$1
@@ -64,7 +64,7 @@ timed() {
 score() {  # NAME SCENE IMAGES TOOL WALL PEAK MODEL_DIR
   local json="$7/eval.json"
   if ! "$BIN/tmr_eval" --gt "$OUT/$2/gt" --model "$7" --output_json "$json" >/dev/null 2>&1; then
-    echo "$2,$3,$4,$5,$6,0,0,0,,,0" >>"$OUT/results.csv"
+    echo "$2,$3,$4,$5,$6,0,0,0,,,0,0" >>"$OUT/results.csv"
     printf "%-10s %-22s %8s s %7s MiB   no model\n" "$2" "$4" "$5" "$6"
     return
   fi
@@ -76,9 +76,11 @@ registered = sum(m["registered_images"] for m in models)
 largest = max((m["registered_images"] for m in models), default=0)
 big = max(models, key=lambda m: m["registered_images"])
 wrong = sum(1 for m in models if m["wrong_merge"])
+# Registered but placed off by more than 5% of the scene scale (tmr_eval).
+displaced = sum(m["displaced_images"] for m in models)
 rot, p90 = big["rotation_error_deg"]["median"], big["rotation_error_deg"]["p90"]
-open(csv, "a").write(f"{scene},{images},{tool},{wall},{peak},{registered},{largest},{len(models)},{rot:.3f},{p90:.3f},{wrong}\n")
-print(f"{scene:<10} {tool:<22} {wall:>8} s {peak:>7} MiB  {registered:>5} registered, largest {largest:>5}, "
+open(csv, "a").write(f"{scene},{images},{tool},{wall},{peak},{registered},{largest},{len(models)},{rot:.3f},{p90:.3f},{wrong},{displaced}\n")
+print(f"{scene:<10} {tool:<22} {wall:>8} s {peak:>7} MiB  {registered:>5} registered ({displaced} displaced), largest {largest:>5}, "
       f"{len(models):>3} models, median rot {rot:.3f}°, wrong merges {wrong}")
 PY
 }
@@ -109,7 +111,7 @@ for scene in "${scenes[@]}"; do
           --Mapper.num_threads "$THREADS")
         if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
           registered=$(grep -o 'Registering image #[0-9]* ([0-9]*)' "$out.log" | tail -1 | grep -o '([0-9]*' | tr -d '(')
-          echo "$scene,$images,colmap_mapper_capped,$wall,$peak,${registered:-0},,0,,,0" >>"$OUT/results.csv"
+          echo "$scene,$images,colmap_mapper_capped,$wall,$peak,${registered:-0},,0,,,0," >>"$OUT/results.csv"
           printf "%-10s %-22s %8s s %7s MiB   stopped at the cap: %s of %s images registered\n" \
             "$scene" "colmap_mapper" "$wall" "$peak" "${registered:-0}" "$images"
           continue

@@ -121,8 +121,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   }
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
-  const size_t min_size = std::min<size_t>(
-      static_cast<size_t>(0.8 * image_names_.size()), o_.mapper.min_model_size);
+  const size_t min_size = MinModelSize();
   SortBySize(&scenes);
   int dropped = 0, images = 0;
   while (scenes.size() > 1 && scenes.back()->NumRegImages() < min_size) {
@@ -138,6 +137,11 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   return scenes;
 }
 
+size_t SceneAssembler::MinModelSize() const {
+  return std::min<size_t>(static_cast<size_t>(0.8 * image_names_.size()),
+                          o_.mapper.min_model_size);
+}
+
 std::vector<std::shared_ptr<colmap::Reconstruction>>
 SceneAssembler::MergeScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) const {
@@ -151,7 +155,17 @@ SceneAssembler::MergeScenes(
     std::vector<std::shared_ptr<colmap::Reconstruction>> next;
     for (const auto& model : clusters) {
       bool joined = false;
-      for (const auto& scene : LinkedScenes(*model, next)) {
+      // A model below the smallest that COLMAP keeps is too weak to move
+      // as one block (tmr_synth city block, seed 3: a model of three
+      // photos whose focal lengths came out 11-53% too long merged on 33 of
+      // 66 shared tracks, and the three ended 1,600 scene scales away).
+      // Where models are completed, its photos are registered one by one
+      // instead (CompleteScenes).
+      const bool too_small =
+          o_.complete_models && model->NumRegImages() < MinModelSize();
+      for (const auto& scene :
+           too_small ? std::vector<std::shared_ptr<colmap::Reconstruction>>()
+                     : LinkedScenes(*model, next)) {
         const auto start = Clock::now();
         const ModelAlignment a = Align(*scene, *model);
         TmrTaskReport task{"merge a model of " +
@@ -197,7 +211,8 @@ SceneAssembler::MergeScenes(
 // holds yet (kernel images the kernel task could not register, leaves of
 // failed leaf tasks, unclustered images) and those of smaller models that
 // no merge joined to it, as COLMAP's mapper continues a model: next image
-// by visible points, registration, triangulation, local refinement. It
+// by visible points, registration (on the scene's points, else
+// structure-less), triangulation, local refinement. It
 // works on the loaded correspondences; the one global adjustment follows
 // in RefineMergedScenes. An image a smaller model gave up leaves that
 // model.
@@ -208,6 +223,11 @@ void SceneAssembler::CompleteScenes(
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
   const auto triangulation = colmap_options.Triangulation();
   const auto local_ba = colmap_options.LocalBundleAdjustment();
+  std::vector<bool> structure_less_flags = {false};
+  if (colmap_options.structure_less_registration_only)
+    structure_less_flags = {true};
+  else if (colmap_options.structure_less_registration_fallback)
+    structure_less_flags = {false, true};
   for (int i = 0; i < static_cast<int>(scenes->size()); ++i) {
     const auto start = Clock::now();
     const auto& scene = (*scenes)[i];
@@ -225,20 +245,29 @@ void SceneAssembler::CompleteScenes(
     colmap::IncrementalMapper mapper(cache_);
     mapper.BeginReconstruction(scene);
     // COLMAP caps the attempts per image (Mapper.max_reg_trials), so the
-    // loop ends when no candidate is left.
+    // loop ends when no candidate is left. As in COLMAP's mapper, an image
+    // is registered on the scene's points first and, where none can be,
+    // on its matches to registered images (structure-less registration).
     bool registered = true;
     while (registered) {
       registered = false;
-      for (const colmap::image_t id : mapper.FindNextImages(options)) {
-        if (held_elsewhere.count(id) || !mapper.RegisterNextImage(options, id))
-          continue;
-        mapper.TriangulateImage(triangulation, id);
-        mapper.IterativeLocalRefinement(
-            colmap_options.ba_local_max_refinements,
-            colmap_options.ba_local_max_refinement_change, options, local_ba,
-            triangulation, id);
-        registered = true;
-        break;
+      for (const bool structure_less : structure_less_flags) {
+        for (const colmap::image_t id :
+             mapper.FindNextImages(options, structure_less)) {
+          if (held_elsewhere.count(id) ||
+              !(structure_less
+                    ? mapper.RegisterNextStructureLessImage(options, id)
+                    : mapper.RegisterNextImage(options, id)))
+            continue;
+          mapper.TriangulateImage(triangulation, id);
+          mapper.IterativeLocalRefinement(
+              colmap_options.ba_local_max_refinements,
+              colmap_options.ba_local_max_refinement_change, options, local_ba,
+              triangulation, id);
+          registered = true;
+          break;
+        }
+        if (registered) break;
       }
     }
     mapper.EndReconstruction(/*discard=*/false);

@@ -62,7 +62,9 @@ class SceneAssembler {
   // Each model joins the first scene it aligns with (Align), the scenes
   // tried in order of the verified matches between them and the model,
   // those without any skipped, until nothing merges; returns the scene
-  // models, largest first. A scene is refined
+  // models, largest first. With options.complete_models, a model below
+  // MinModelSize stays apart: CompleteScenes registers its photos one by
+  // one. A scene is refined
   // (Refine) whenever it has grown by options.merge_refine_growth since its
   // last global adjustment, as COLMAP's mapper refines a model grown by
   // 10%: parts appended one after another around a city's loops drift
@@ -72,6 +74,8 @@ class SceneAssembler {
   // adjustment: one per merge would cost far more.
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
+  // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
+  size_t MinModelSize() const;
 
   // COLMAP's incremental mapper continues each scene, largest first, with
   // the images no larger scene holds (registration and local refinement on

@@ -95,19 +95,17 @@ namespace {
 constexpr int kMinPartImages = 3;
 
 // A model with this share of the task's images ends the search for an
-// initial pair; the rest of a kernel is mapped on its own (ReconstructRest),
+// initial pair; the rest of a kernel is mapped on its own (MapRest),
 // which costs less than another attempt at the whole kernel.
 constexpr double kEnoughShare = 0.5;
 
 // The images of the task database (`images`) that `model` does not
-// register, mapped from scratch; every model of at least kMinPartImages
-// images is written.
-void ReconstructRest(const colmap::IncrementalPipelineOptions& mapper_options,
-                     const std::string& task_database,
-                     const std::vector<colmap::Image>& images,
-                     const colmap::Reconstruction& model,
-                     const std::string& output_model,
-                     ReconstructionTaskResult* result) {
+// register, mapped from scratch: the models of at least kMinPartImages
+// images, largest first.
+std::vector<std::shared_ptr<colmap::Reconstruction>> MapRest(
+    const colmap::IncrementalPipelineOptions& mapper_options,
+    const std::string& task_database, const std::vector<colmap::Image>& images,
+    const colmap::Reconstruction& model) {
   auto options =
       std::make_shared<colmap::IncrementalPipelineOptions>(mapper_options);
   options->multiple_models = true;
@@ -123,15 +121,12 @@ void ReconstructRest(const colmap::IncrementalPipelineOptions& mapper_options,
   colmap::IncrementalPipeline controller(
       options, colmap::Database::Open(task_database), manager);
   controller.Run();
-  for (const auto& model : DisjointModels(*manager)) {
-    const auto& part = *model;
-    if (static_cast<int>(part.NumRegImages()) < kMinPartImages) continue;
-    const std::string path =
-        output_model + "_part" + std::to_string(result->part_models.size() + 1);
-    if (!WriteModelAtomically(part, path)) continue;
-    result->part_models.push_back(path);
-    result->num_registered_in_parts += static_cast<int>(part.NumRegImages());
+  std::vector<std::shared_ptr<colmap::Reconstruction>> parts;
+  for (const auto& part : DisjointModels(*manager)) {
+    if (static_cast<int>(part->NumRegImages()) >= kMinPartImages)
+      parts.push_back(part);
   }
+  return parts;
 }
 
 // One run of COLMAP's mapper controller on the task database from an
@@ -272,15 +267,42 @@ ReconstructionTaskResult RunReconstructionTask(
   if (best && best->NumRegImages() >= 2 && base_model.empty() && kernel_check)
     RedoIfInconsistent(mapper_options, task_database, attempts, best_pair,
                        *kernel_check, &best, &how);
+  std::vector<std::shared_ptr<colmap::Reconstruction>> parts;
+  if (best && best->NumRegImages() >= 2 &&
+      static_cast<int>(best->NumRegImages()) + kMinPartImages <=
+          result.num_images) {
+    parts = MapRest(mapper_options, task_database, images, *best);
+  }
+  // A kernel's model is its largest. COLMAP keeps the first model of a run
+  // whatever its size, so a seeded model can stall at a few images where
+  // the rest then gives one of most of the kernel (plazas8, kernel 5: 2
+  // images from the exemplar, 80 from the rest).
+  if (best && base_model.empty() && !parts.empty() &&
+      parts.front()->NumRegImages() > best->NumRegImages()) {
+    how += "; stalled at " + std::to_string(best->NumRegImages()) +
+           " images, the largest model of the rest taken instead";
+    std::swap(best, parts.front());
+    if (static_cast<int>(parts.front()->NumRegImages()) < kMinPartImages)
+      parts.erase(parts.begin());
+    std::stable_sort(parts.begin(), parts.end(),
+                     [](const auto& a, const auto& b) {
+                       return a->NumRegImages() > b->NumRegImages();
+                     });
+  }
   if (best && best->NumRegImages() >= 2) {
     result.num_registered = static_cast<int>(best->NumRegImages());
     result.success = WriteModelAtomically(*best, output_model);
     result.message = result.success ? how : "cannot write " + output_model;
   }
-  if (result.success &&
-      result.num_registered + kMinPartImages <= result.num_images) {
-    ReconstructRest(mapper_options, task_database, images, *best, output_model,
-                    &result);
+  if (result.success) {
+    for (const auto& part : parts) {
+      const std::string path = output_model + "_part" +
+                               std::to_string(result.part_models.size() + 1);
+      if (!WriteModelAtomically(*part, path)) continue;
+      result.part_models.push_back(path);
+      result.num_registered_in_parts +=
+          static_cast<int>(part->NumRegImages());
+    }
   }
   if (!result.success && result.message.empty())
     result.message = "no initial pair worked";

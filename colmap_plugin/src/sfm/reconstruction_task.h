@@ -43,8 +43,10 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // model wins, and a model with half of the images ends the search. When the
 // winner leaves images out, COLMAP's mapper then reconstructs those on their
 // own (several models if need be): a kernel can hold two dense groups that
-// only its full scene links, and their models may still merge later. With
-// `kernel_check`, a kernel model that contradicts its verified matches is
+// only its full scene links, and their models may still merge later. The
+// largest of these becomes the kernel's model when it is larger than the
+// winner (COLMAP keeps the first model of a run whatever its size, and a
+// seeded model can stall at a few images). With `kernel_check`, a kernel model that contradicts its verified matches is
 // mapped again, with the intrinsics held at their priors and then from the
 // other initial pairs, until a redo passes (CheckMatchConsistency; the
 // result's message says what happened).
