@@ -2,8 +2,8 @@
 // A kernel task whose seeded model stalls (RunReconstructionTask): COLMAP
 // keeps the first model of a mapper run whatever its size, so a task
 // seeded at a pair whose photos link to nothing else ends with a model of
-// those few photos. The kernel's model is then the largest model of the rest, as on
-// plazas8 (kernel 5: 2 images from the exemplar, 80 from the rest).
+// those few photos. The kernel's model is then the largest model of the rest,
+// as on plazas8 (kernel 5: 2 images from the exemplar, 80 from the rest).
 #include "sfm/reconstruction_task.h"
 
 #include <colmap/math/random.h>

@@ -51,8 +51,7 @@ void TurnEasternHalf(double degrees, colmap::Reconstruction* model) {
   const colmap::Rigid3d moved_from_world(turn, centroid - turn * centroid);
   for (const colmap::image_t id : east) {
     tmr::SetPoseAndRegister(
-        id,
-        model->Image(id).CamFromWorld() * colmap::Inverse(moved_from_world),
+        id, model->Image(id).CamFromWorld() * colmap::Inverse(moved_from_world),
         model);
   }
 }
@@ -103,7 +102,8 @@ int main(int argc, char** argv) {
        [&](colmap::IncrementalMapper* mapper) {
          const size_t pruned =
              colmap::FindRedundantPoints3D(
-                 options.mapper.ba_global_ignore_redundant_points3D_min_coverage_gain,
+                 options.mapper
+                     .ba_global_ignore_redundant_points3D_min_coverage_gain,
                  *mapper->Reconstruction())
                  .size();
          colmap::IncrementalMapper::Options pruning = options.Mapper();
@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
          return "global on " +
                 std::to_string(mapper->Reconstruction()->NumPoints3D() -
                                pruned) +
-                " of " + std::to_string(mapper->Reconstruction()->NumPoints3D()) +
+                " of " +
+                std::to_string(mapper->Reconstruction()->NumPoints3D()) +
                 " points, then the rest";
        }},
       {"tmr: every point (AdjustWholeModel)",
@@ -141,8 +142,8 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
             .count();
     mapper.EndReconstruction(/*discard=*/false);
-    const tmr::ModelEvaluation e =
-        tmr::EvaluateReconstruction(truth, *model, tmr::ModelEvaluationOptions());
+    const tmr::ModelEvaluation e = tmr::EvaluateReconstruction(
+        truth, *model, tmr::ModelEvaluationOptions());
     std::printf("| %s | %.1f | %.3f° (%.3f°) | %.3f | %s |\n", name.c_str(),
                 seconds, e.rotation_error_deg.median, e.rotation_error_deg.p90,
                 model->ComputeMeanReprojectionError(), report.c_str());

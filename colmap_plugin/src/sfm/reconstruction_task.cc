@@ -300,8 +300,7 @@ ReconstructionTaskResult RunReconstructionTask(
                                std::to_string(result.part_models.size() + 1);
       if (!WriteModelAtomically(*part, path)) continue;
       result.part_models.push_back(path);
-      result.num_registered_in_parts +=
-          static_cast<int>(part->NumRegImages());
+      result.num_registered_in_parts += static_cast<int>(part->NumRegImages());
     }
   }
   if (!result.success && result.message.empty())

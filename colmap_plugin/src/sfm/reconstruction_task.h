@@ -46,12 +46,13 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // only its full scene links, and their models may still merge later. The
 // largest of these becomes the kernel's model when it is larger than the
 // winner (COLMAP keeps the first model of a run whatever its size, and a
-// seeded model can stall at a few images). With `kernel_check`, a kernel model that contradicts its verified matches is
-// mapped again, with the intrinsics held at their priors and then from the
-// other initial pairs, until a redo passes (CheckMatchConsistency; the
-// result's message says what happened).
-// Leaf task: `base_model` is the kernel's model; the mapper extends a copy
-// of it with the task's other images, keeping the base poses fixed when
+// seeded model can stall at a few images). With `kernel_check`, a kernel model
+// that contradicts its verified matches is mapped again, with the intrinsics
+// held at their priors and then from the other initial pairs, until a redo
+// passes (CheckMatchConsistency; the result's message says what happened).
+//
+// Leaf task: `base_model` is the kernel's model; the mapper extends a copy of
+// it with the task's other images, keeping the base poses fixed when
 // mapper_options.fix_existing_images is set. Leaf images linked to the
 // kernel only through other leaf images cannot be registered when those
 // see no point of the base in common (a registered image needs points that
