@@ -26,9 +26,9 @@
 #include <string>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "sfm/block_adjustment.h"
 #include "sfm/model_merging.h"
 #include "sfm/task_database.h"
+#include "tmr/colmap/tmr_mapper.h"
 
 namespace {
 
@@ -64,7 +64,17 @@ int main(int argc, char** argv) {
                  "[TURN_DEG]\n";
     return 2;
   }
-  const double turn_deg = argc == 5 ? std::atof(argv[4]) : 0.5;
+  double turn_deg = 0.5;
+  if (argc == 5) {
+    char* end = nullptr;
+    turn_deg = std::strtod(argv[4], &end);
+    if (*argv[4] == '\0' || *end != '\0' || !(turn_deg > 0 && turn_deg < 90)) {
+      std::cerr << "bench_point_selection: error: TURN_DEG must be a number "
+                   "of degrees in (0, 90), not '"
+                << argv[4] << "'\n";
+      return 2;
+    }
+  }
   colmap::Reconstruction merged, truth;
   try {
     merged.Read(argv[2]);
@@ -90,13 +100,20 @@ int main(int argc, char** argv) {
   colmap::IncrementalPipelineOptions options;
   options.num_threads = 2;
   const colmap::BundleAdjustmentOptions ba = options.GlobalBundleAdjustment();
+  // tmr's adjustments as tmr_mapper runs them (AdjustMergedBundle): on the
+  // longest tracks while scenes grow, and whole.
+  tmr::MergedModelAdjustment longest_tracks;
+  longest_tracks.longest_tracks_per_image =
+      tmr::TmrMapperOptions().merge_refine_points_per_image;
+  tmr::MergedModelAdjustment whole;
+  whole.max_block_images = 0;
 
   using Adjust = std::function<std::string(colmap::IncrementalMapper*)>;
   const std::vector<std::pair<std::string, Adjust>> selections = {
-      {"tmr: 500 longest tracks per image",
+      {"tmr: " + std::to_string(longest_tracks.longest_tracks_per_image) +
+           " longest tracks per image",
        [&](colmap::IncrementalMapper* mapper) {
-         return tmr::AdjustOnLongestTracks(ba, 500,
-                                           mapper->Reconstruction().get());
+         return tmr::AdjustMergedBundle(options, longest_tracks, mapper);
        }},
       {"COLMAP: redundant points pruned (gain 0.05)",
        [&](colmap::IncrementalMapper* mapper) {
@@ -118,7 +135,7 @@ int main(int argc, char** argv) {
        }},
       {"tmr: every point (AdjustWholeModel)",
        [&](colmap::IncrementalMapper* mapper) {
-         return tmr::AdjustWholeModel(ba, mapper->Reconstruction().get());
+         return tmr::AdjustMergedBundle(options, whole, mapper);
        }},
       {"COLMAP: every point (AdjustGlobalBundle)",
        [&](colmap::IncrementalMapper* mapper) {
