@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <limits>
+#include <optional>
 #include <unordered_set>
 
 #include "controllers/tmr_mapper_support.h"
@@ -38,6 +39,21 @@ std::unordered_set<std::string> HeldImageNames(
   for (size_t i = 0; i < std::min(count, models.size()); ++i) {
     for (const colmap::image_t id : models[i]->RegImageIds())
       held.insert(models[i]->Image(id).Name());
+  }
+  return held;
+}
+
+// Each scene's registered images.
+std::unordered_map<const colmap::Reconstruction*,
+                   std::unordered_set<colmap::image_t>>
+ImagesByScene(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) {
+  std::unordered_map<const colmap::Reconstruction*,
+                     std::unordered_set<colmap::image_t>>
+      held;
+  for (const auto& scene : scenes) {
+    const std::vector<colmap::image_t>& ids = scene->RegImageIds();
+    held[scene.get()].insert(ids.begin(), ids.end());
   }
   return held;
 }
@@ -108,16 +124,19 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   // (tmr_synth city of 3,752: two clusters of 234 and 222 photos fitted 31%
   // and 41% of their shared tracks, below half of the anchor image's rate).
   if (scenes.size() > 1) {
-    std::unordered_map<const colmap::Reconstruction*,
-                       std::unordered_set<colmap::image_t>>
-        held;
-    for (const auto& scene : scenes) {
-      const std::vector<colmap::image_t>& ids = scene->RegImageIds();
-      held[scene.get()].insert(ids.begin(), ids.end());
-    }
+    const auto held = ImagesByScene(scenes);
     const size_t before = scenes.size();
     scenes = MergeScenes(scenes);
     if (scenes.size() < before) RefineLateMerges(scenes, held);
+  }
+  // A last completion on the refined scenes, whose retriangulation made
+  // points that photos left out before can register on (tmr_synth plazas of
+  // 960: 4 photos of a plaza whose neighbours joined by the last merges;
+  // `colmap image_registrator` registered them on the final model).
+  if (o_.complete_models) {
+    const auto held = ImagesByScene(scenes);
+    CompleteScenes(&scenes, /*keep_unless_grown=*/true);
+    RefineLateMerges(scenes, held);
   }
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
@@ -217,7 +236,8 @@ SceneAssembler::MergeScenes(
 // in RefineMergedScenes. An image a smaller model gave up leaves that
 // model.
 void SceneAssembler::CompleteScenes(
-    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
+    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes,
+    bool keep_unless_grown) const {
   SortBySize(scenes);
   const auto colmap_options = ColmapOptions(o_, num_threads_);
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
@@ -236,6 +256,8 @@ void SceneAssembler::CompleteScenes(
     const std::vector<colmap::image_t>& held = scene->RegImageIds();
     const std::unordered_set<colmap::image_t> before_ids(held.begin(),
                                                          held.end());
+    const std::optional<colmap::Reconstruction> kept =
+        keep_unless_grown ? std::make_optional(*scene) : std::nullopt;
     // Larger scenes keep their images; smaller models offer theirs.
     std::unordered_set<colmap::image_t> held_elsewhere;
     for (const std::string& name : HeldImageNames(*scenes, i)) {
@@ -274,6 +296,7 @@ void SceneAssembler::CompleteScenes(
     const int removed = RemoveUnanchoredImages(
         before_ids, options.abs_pose_min_num_inliers, scene.get());
     const int added = static_cast<int>(scene->NumRegImages()) - before;
+    if (kept && added == 0) *scene = *kept;
     int taken = 0;
     for (int j = i + 1; j < static_cast<int>(scenes->size()); ++j) {
       colmap::Reconstruction& smaller = *(*scenes)[j];

@@ -54,8 +54,10 @@ class SceneAssembler {
 
   // The whole last stage: MergeScenes, CompleteScenes, ReconstructLeftovers
   // (the last two when options.complete_models), RefineMergedScenes, then
-  // MergeScenes once more on the refined scenes and RefineLateMerges.
-  // Returns the scene models, largest first.
+  // MergeScenes once more on the refined scenes and RefineLateMerges, and
+  // (options.complete_models) CompleteScenes on the refined scenes with
+  // RefineLateMerges of the images it added. Returns the scene models,
+  // largest first.
   std::vector<std::shared_ptr<colmap::Reconstruction>> Assemble(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
 
@@ -84,9 +86,14 @@ class SceneAssembler {
   // the images of smaller models that no merge joined to it (a leaf's part
   // model mapped from scratch because its photos see points of another
   // kernel's cluster). An image registered so leaves its smaller model;
-  // models left with fewer than two images are dropped.
+  // models left with fewer than two images are dropped. With
+  // `keep_unless_grown`, a scene that gains no image is left exactly as it
+  // was: the attempts alone moved a refined scene by rounding differences
+  // that varied between two runs with the same seed (test
+  // tmr_mapper_repeatable; where in COLMAP's mapper not traced).
   void CompleteScenes(
-      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
+      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes,
+      bool keep_unless_grown = false) const;
 
   // Refines the scenes merged or completed since their last global
   // adjustment: tracks completed and merged over the full correspondence
@@ -95,9 +102,9 @@ class SceneAssembler {
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
 
   // After the second try of the models that did not fit before
-  // RefineMergedScenes (`held`: each scene's images before it): a scene
-  // that this try grew by less than kFullAdjustmentGrowth gets an
-  // adjustment of only the images that joined, with their points
+  // RefineMergedScenes, or the last completion (`held`: each scene's images
+  // before it): a scene that this grew by less than kFullAdjustmentGrowth
+  // gets an adjustment of only the images that joined, with their points
   // (MergedModelAdjustment::only_images), a larger one a full one again.
   // tmr_synth city of 1,800: a cluster of 86 photos joined late; the second
   // full adjustment took 128 s, the lighter one of the refinements while
