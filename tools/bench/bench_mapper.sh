@@ -110,7 +110,8 @@ for scene in "${scenes[@]}"; do
           --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
           --Mapper.num_threads "$THREADS")
         if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
-          registered=$(grep -o 'Registering image #[0-9]* ([0-9]*)' "$out.log" | tail -1 | grep -o '([0-9]*' | tr -d '(')
+          # COLMAP 4.1 logs "Registering image #ID (num_reg_frames=N)".
+          registered=$(grep -o 'num_reg_frames=[0-9]*' "$out.log" | tail -1 | cut -d= -f2 || true)
           echo "$scene,$images,colmap_mapper_capped,$wall,$peak,${registered:-0},,0,,,0," >>"$OUT/results.csv"
           printf "%-10s %-22s %8s s %7s MiB   stopped at the cap: %s of %s images registered\n" \
             "$scene" "colmap_mapper" "$wall" "$peak" "${registered:-0}" "$images"
