@@ -21,6 +21,8 @@ void AddTmrMapperOptions(po::options_description* desc, TmrMapperOptions* o) {
     AddOption(desc, name, value, help);
   };
   add("Mapper.num_threads", &o->num_threads, "threads (-1: all cores)");
+  add("Tmr.repeatable", &o->repeatable,
+      "each COLMAP step on one thread: the same seed gives the same models");
   add("Mapper.min_num_matches", &o->mapper.min_num_matches,
       "inliers for a pair to count");
   add("Mapper.ignore_watermarks", &o->mapper.ignore_watermarks,

@@ -2,6 +2,7 @@
 #include "controllers/cluster_merge.h"
 
 #include <colmap/estimators/alignment.h>
+#include <colmap/math/random.h>
 
 namespace tmr {
 
@@ -22,6 +23,10 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
     colmap::Reconstruction leaf;
     leaf.ReadBinary(leaf_models[l]);
     colmap::Sim3d model_from_leaf;
+    // COLMAP's alignment takes no seed: its RANSAC draws from the thread's
+    // generator, whose state depends on the tasks this worker ran before
+    // (two workers against one gave another cluster model).
+    if (mapper.random_seed >= 0) colmap::SetPRNGSeed(mapper.random_seed);
     if (!colmap::AlignReconstructionsViaReprojections(
             leaf, *merge.model,
             /*min_inlier_observations=*/0.3, kMaxReprojErrorPx,

@@ -43,7 +43,7 @@ colmap::IncrementalPipelineOptions ColmapOptions(
   o.ba_local_max_num_iterations = m.ba_local_max_num_iterations;
   o.ba_local_max_refinements = m.ba_local_max_refinements;
   o.ba_local_function_tolerance = m.ba_local_function_tolerance;
-  o.num_threads = num_threads;
+  o.num_threads = options.repeatable ? 1 : num_threads;
   o.random_seed =
       static_cast<int>(options.tree.seed % std::numeric_limits<int>::max());
   return o;

@@ -16,8 +16,8 @@
 namespace tmr {
 
 // COLMAP's mapper options with tmr_mapper's pass-through values, seeded
-// with options.tree.seed (COLMAP 4's random_seed: the same seed gives the
-// same models).
+// with options.tree.seed (COLMAP 4's random_seed), on `num_threads` threads
+// (one when options.repeatable: the same seed then gives the same models).
 colmap::IncrementalPipelineOptions ColmapOptions(
     const TmrMapperOptions& options, int num_threads);
 

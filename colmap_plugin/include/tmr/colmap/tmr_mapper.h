@@ -49,6 +49,14 @@ struct TmrMapperOptions {
   std::string output_path;    // models 0, 1, ... plus tree.json and report
   // Worker threads (-1: all cores); this many tasks run at once.
   int num_threads = -1;
+  // Run each COLMAP step (bundle adjustment, structure-less RANSAC) on one
+  // thread; tasks still run side by side on num_threads workers. The same
+  // database, options and tree.seed then give byte-identical models in
+  // whatever order the tasks finish. With more threads per step, Ceres and
+  // COLMAP's parallel RANSAC sum and draw in an order that varies between
+  // runs (COLMAP's own repeatability tests use one thread), and a task's
+  // share of the threads depends on how many others run beside it.
+  bool repeatable = true;
   // Keep the kernel's poses fixed when leaf clusters extend it.
   bool fix_base_in_leaves = true;
   // tau of the merge rule (paper Sec. 5).
