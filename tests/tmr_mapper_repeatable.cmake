@@ -3,8 +3,9 @@
 # model, although the first runs two tasks at a time and the second one
 # after the other, so that tasks finish in another order and no task runs
 # beside another (--Tmr.repeatable, the default, runs each COLMAP step on one
-# thread; with a thread count that depended on the tasks running beside it,
-# CI saw a cluster merge come out differently, docs/mapper.md#repeatable-runs).
+# thread). CI saw a cluster merge come out differently when COLMAP's
+# alignment drew from the worker thread's unseeded generator
+# (docs/mapper.md#repeatable-runs).
 file(REMOVE_RECURSE ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
 
