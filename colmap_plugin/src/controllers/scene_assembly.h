@@ -88,9 +88,10 @@ class SceneAssembler {
   // kernel's cluster). An image registered so leaves its smaller model;
   // models left with fewer than two images are dropped. With
   // `keep_unless_grown`, a scene that gains no image is left exactly as it
-  // was: the attempts alone moved a refined scene by rounding differences
-  // that varied between two runs with the same seed (test
-  // tmr_mapper_repeatable; where in COLMAP's mapper not traced).
+  // was: the attempts alone move a refined scene slightly (which of
+  // COLMAP's steps does is not traced). Those moves are repeatable; the
+  // run-to-run differences first blamed on them came from the unseeded
+  // generator of the cluster merge's alignment (MergeLeafModels).
   void CompleteScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes,
       bool keep_unless_grown = false) const;
