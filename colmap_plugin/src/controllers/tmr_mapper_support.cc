@@ -93,16 +93,17 @@ std::string RunFingerprint(const TmrMapperOptions& o,
   id << "database " << std::hex << DatabaseContentHash(o.database_path)
      << std::dec << "\nmapper " << m.min_num_matches << " "
      << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
-     << m.abs_pose_min_num_inliers << " " << m.filter_max_reproj_error << " "
-     << m.tri_min_angle << " " << m.ba_refine_focal_length << " "
-     << m.ba_refine_principal_point << " " << m.ba_refine_extra_params << " "
-     << m.ba_global_max_num_iterations << " " << m.init_max_forward_motion
-     << " " << m.init_min_tri_angle << " " << m.filter_min_tri_angle << " "
-     << m.ba_global_max_refinements << " " << m.ba_global_function_tolerance
-     << " " << m.ba_local_num_images << " " << m.ba_local_max_num_iterations
-     << " " << m.ba_local_max_refinements << " "
-     << m.ba_local_function_tolerance << "\ntasks " << o.fix_base_in_leaves
-     << " " << o.task_ba_global_ratio << " " << o.check_kernels << "\n"
+     << m.min_model_size << " " << m.abs_pose_min_num_inliers << " "
+     << m.filter_max_reproj_error << " " << m.tri_min_angle << " "
+     << m.ba_refine_focal_length << " " << m.ba_refine_principal_point << " "
+     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations << " "
+     << m.init_max_forward_motion << " " << m.init_min_tri_angle << " "
+     << m.filter_min_tri_angle << " " << m.ba_global_max_refinements << " "
+     << m.ba_global_function_tolerance << " " << m.ba_local_num_images << " "
+     << m.ba_local_max_num_iterations << " " << m.ba_local_max_refinements
+     << " " << m.ba_local_function_tolerance << "\ntasks "
+     << o.fix_base_in_leaves << " " << o.task_ba_global_ratio << " "
+     << o.check_kernels << " " << o.repeatable << "\n"
      << tree_json;
   return id.str();
 }
