@@ -106,7 +106,6 @@ class DatabaseSchemasTest : public ::testing::Test {
     options.database_path = database.string();
     options.output_path = output.string();
     options.num_threads = 2;
-    options.tree.kernels.kernel_size_floor = 30;  // as tmr_mapper
     std::vector<std::string> lines;
     TmrMapperReport report;
     std::string error;

@@ -32,6 +32,18 @@ if(NOT tasks MATCHES "(^|\n)kernel\\.0 [0-9]+ 0 todo\n"
    OR NOT tasks MATCHES "\nleaf\\.0\\.0 [0-9]+ [0-9]+ todo\n")
   message(FATAL_ERROR "partition should list the tasks:\n${tasks}")
 endif()
+# tmr_partition partitions the database as the mapper's plan does.
+run(${TMR_PARTITION} --database_path ${WORK_DIR}/database.db
+    --output_path ${WORK_DIR}/tmr_partition --picture 0)
+file(READ ${staged}/tree.json mapper_tree)
+file(READ ${WORK_DIR}/tmr_partition/tree.json partition_tree)
+string(JSON mapper_tree REMOVE "${mapper_tree}" timing_s)
+string(JSON partition_tree REMOVE "${partition_tree}" timing_s)
+if(NOT mapper_tree STREQUAL partition_tree)
+  message(FATAL_ERROR "tmr_partition and tmr_mapper partition differ:\n"
+                      "${mapper_tree}\n${partition_tree}")
+endif()
+
 expect_error("task leaf\\.0\\.0 needs kernel\\.0 finished first"
              ${TMR_MAPPER} run_task --plan ${plan} --task leaf.0.0)
 expect_error("the plan has no task 'kernel\\.99'"

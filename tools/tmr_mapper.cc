@@ -59,8 +59,6 @@ int main(int argc, char** argv) {
   }
   const bool from_plan = stage != "run" && stage != "partition";
   tmr::TmrMapperOptions o;
-  // Kernels must seed stable models: m >= 30 even in small scenes.
-  o.tree.kernels.kernel_size_floor = 30;
   bool verbose = false;
   std::string plan, task;
   po::options_description desc(

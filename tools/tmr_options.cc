@@ -6,6 +6,9 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace tmr {
 
@@ -51,7 +54,12 @@ void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
   add("Tmr.epsilon", &o->kernels.epsilon, "a = min(s) + epsilon");
   add("Tmr.min_kernel_size", &o->kernels.min_kernel_size, "smallest kernel");
   add("Tmr.kernel_size_floor", &o->kernels.kernel_size_floor,
-      "m is at least this");
+      "m, and every dense place, is at least this (the paper: 3)");
+  add("Tmr.kernels_per_place", &o->kernels.per_place,
+      "search kernels per dense place (0: the paper's layers on the whole "
+      "graph)");
+  add("Tmr.place_core_neighbors", &o->kernels.place_core_neighbors,
+      "an image's density is its this-th strongest pair (dense places)");
   add("Tmr.beta1", &o->exemplar.beta1,
       "weight of the mean similarity in the exemplar score");
   add("Tmr.beta2", &o->exemplar.beta2,
@@ -60,6 +68,9 @@ void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
       "affinity propagation damping");
   add("Tmr.msp_layers", &o->image_clustering.num_layers,
       "layers L of the Multi-layer Shortest Path");
+  add("Tmr.min_bridge_side", &o->image_clustering.min_bridge_side,
+      "a single pair linking two groups of at least this many images never "
+      "pulls one into the other's cluster (0: the paper)");
   add("Tmr.r", &o->leaf_clustering.r, "ideal leaf cluster size e = r * m");
   add("Tmr.sigma1", &o->leaf_clustering.sigma1,
       "RAC weight of the cluster distance");
@@ -76,15 +87,31 @@ void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
       << " images, kernel size m = " << tree.kernel_size << ", "
       << tree.kernels.size() << " kernels, " << tree.unclustered.size()
       << " unclustered\n";
+  std::map<std::string, int> origins;
+  for (const TmrKernelNode& node : tree.kernels)
+    ++origins[KernelOriginName(node.origin)];
+  out << "kernels by origin:";
+  for (const auto& [origin, count] : origins)
+    out << " " << count << " " << origin;
+  std::vector<size_t> leaf_sizes;
+  for (const TmrKernelNode& node : tree.kernels) {
+    for (const auto& leaf : node.leaf_clusters)
+      leaf_sizes.push_back(leaf.size());
+  }
+  std::sort(leaf_sizes.begin(), leaf_sizes.end());
+  out << "; " << leaf_sizes.size() << " leaf clusters";
+  if (!leaf_sizes.empty()) {
+    out << " of " << leaf_sizes.front() << "-" << leaf_sizes.back()
+        << " images (median " << leaf_sizes[leaf_sizes.size() / 2] << ")";
+  }
+  out << "\n";
   out << std::setw(6) << "kernel" << std::setw(8) << "origin" << std::setw(8)
       << "kernel" << std::setw(9) << "cluster" << std::setw(7) << "leaves"
       << "  leaf cluster sizes"
       << "   exemplar\n";
   for (size_t k = 0; k < tree.kernels.size(); ++k) {
     const TmrKernelNode& node = tree.kernels[k];
-    const char* origin = node.origin == KernelOrigin::kLayer    ? "layer"
-                         : node.origin == KernelOrigin::kCarved ? "carved"
-                                                                : "rescue";
+    const char* origin = KernelOriginName(node.origin);
     std::string sizes;
     for (const auto& leaf : node.leaf_clusters) {
       sizes += (sizes.empty() ? "" : " ") + std::to_string(leaf.size());

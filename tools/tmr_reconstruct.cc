@@ -18,7 +18,6 @@ namespace po = boost::program_options;
 
 int main(int argc, char** argv) {
   tmr::ReconstructImagesOptions o;
-  o.mapper.tree.kernels.kernel_size_floor = 30;  // as tmr_mapper
   bool verbose = false;
   po::options_description desc(
       "tmr_reconstruct IMAGES OUT [options]: COLMAP feature extraction and "

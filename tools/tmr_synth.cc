@@ -36,6 +36,14 @@ int main(int argc, char** argv) {
                  "places: metres between link cameras (0: no link)");
   tmr::AddOption(&desc, "place_distance", &o.place_distance,
                  "places: metres between places");
+  tmr::AddOption(&desc, "place_cameras", &o.place_cameras,
+                 "places: cameras of each linked place, e.g. 40,90,200 "
+                 "(empty: num_places x cameras_per_place)");
+  tmr::AddOption(&desc, "place_rows", &o.place_rows,
+                 "places: lengths of the unlinked rows the linked places "
+                 "form, e.g. 3,2 (empty: one row)");
+  tmr::AddOption(&desc, "vary_link_lengths", &o.vary_link_lengths,
+                 "places: links of 1, 1.5 and 2 x place_distance in turn");
   tmr::AddOption(&desc, "plaza_distance", &o.plaza_distance,
                  "plazas: metres between neighbouring plazas");
   tmr::AddOption(&desc, "plaza_radius", &o.plaza_radius,

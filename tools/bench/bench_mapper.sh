@@ -18,7 +18,8 @@
 #          places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
-# colmap_global tmr_mapper") picks the tools and their order; TMR_ARGS adds options to
+# colmap_global tmr_mapper"; also tmr_mapper_paper, tmr_mapper with the
+# paper's kernel search and image clustering) picks the tools and their order; TMR_ARGS adds options to
 # tmr_mapper (e.g. "--Tmr.keep_work 1"); STOCK_CAP=SECONDS stops `colmap
 # mapper` after that long and reports the images it had registered (a
 # lower bound on its time, for scenes where it takes hours).
@@ -125,11 +126,28 @@ for scene in "${scenes[@]}"; do
         read -r wall peak < <(timed "$out.log" "$COLMAP" global_mapper \
           --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
           --GlobalMapper.num_threads "$THREADS") ;;
-      tmr_mapper)
+      tmr_mapper|tmr_mapper_paper)
+        # tmr_mapper_paper: the paper's kernel search and image clustering
+        # (layers on the whole graph, single-pair links crossed).
+        paper_args=()
+        [[ $tool == tmr_mapper ]] || paper_args=(--Tmr.kernels_per_place 0 --Tmr.min_bridge_side 0)
         read -r wall peak < <(timed "$out.log" "$BIN/tmr_mapper" --database_path "$dir/database.db" \
-          --output_path "$out" --Mapper.num_threads "$THREADS" ${TMR_ARGS:-}) ;;
+          --output_path "$out" --Mapper.num_threads "$THREADS" "${paper_args[@]}" ${TMR_ARGS:-}) ;;
     esac
     score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
+    if [[ $tool == tmr_mapper* && -f "$out/tree.json" ]]; then  # the partition, for issue 25
+      python3 - "$out/tree.json" "$out.log" <<'PY'
+import collections, json, re, sys
+tree = json.load(open(sys.argv[1]))
+origins = collections.Counter(k["origin"] for k in tree["kernels"])
+leaves = sorted(len(l) for k in tree["kernels"] for l in k["leaf_clusters"])
+seconds = re.findall(r"partition: .*\(([0-9.]+) s\)", open(sys.argv[2]).read())
+print("           partition: %d kernels (%s), kernel sizes %s, %d leaf clusters, largest leaf %d, "
+      "%d unclustered, %s s" % (len(tree["kernels"]), ", ".join("%d %s" % (n, o) for o, n in sorted(origins.items())),
+      "-".join(str(x) for x in (min(len(k["kernel_images"]) for k in tree["kernels"]), max(len(k["kernel_images"]) for k in tree["kernels"]))) if tree["kernels"] else "-",
+      len(leaves), leaves[-1] if leaves else 0, len(tree["unclustered"]), seconds[-1] if seconds else "?"))
+PY
+    fi
   done
 done
 

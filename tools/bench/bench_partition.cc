@@ -6,7 +6,9 @@
 // blob read) beside the time and peak memory of each partition stage.
 //
 // Usage: bench_partition [--sizes 1000,5000,20000,100000] [--nearest 27]
-//                        [--dir out/bench_partition]
+//                        [--dir out/bench_partition] [--paper 0|1]
+// --paper 1: the paper's kernel search on the whole graph and its image
+// clustering across single-pair links (per_place 0, min_bridge_side 0).
 #include <colmap/estimators/two_view_geometry.h>
 #include <colmap/scene/database.h>
 #include <sqlite3.h>
@@ -132,6 +134,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes = {1000, 5000, 20000, 100000};
   std::string dir = "out/bench_partition";
   int nearest = 27;  // gives about 30 neighbours per image
+  tmr::TmrTreeOptions options;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--sizes") {
@@ -143,6 +146,11 @@ int main(int argc, char** argv) {
       nearest = std::stoi(argv[i + 1]);
     } else if (flag == "--dir") {
       dir = argv[i + 1];
+    } else if (flag == "--paper") {  // the paper's kernels and clusters
+      if (std::stoi(argv[i + 1]) != 0) {
+        options.kernels.per_place = false;
+        options.image_clustering.min_bridge_side = 0;
+      }
     } else {
       std::cerr << "bench_partition: error: unknown option " << flag << "\n";
       return 2;
@@ -167,7 +175,7 @@ int main(int argc, char** argv) {
     auto start = std::chrono::steady_clock::now();
     const tmr::MatchGraph graph = tmr::ReadMatchGraph(path);
     const double read = Seconds(start);
-    const tmr::TmrTree tree = tmr::BuildTmrTree(graph, {});
+    const tmr::TmrTree tree = tmr::BuildTmrTree(graph, options);
     const auto& t = tree.timing;
     const double partition = t.graphs_s + t.kernels_s + t.exemplars_s +
                              t.image_clusters_s + t.leaf_clusters_s;

@@ -162,23 +162,36 @@ void AddCorridorWalls(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
 
 void BuildPlaces(const SyntheticSceneOptions& o, std::mt19937_64& rng,
                  SceneLayout* layout) {
-  for (int p = 0; p < o.num_places; ++p) {
-    const Eigen::Vector2d center(p * o.place_distance, 0.0);
-    AddPlace(center, 0.0, o.cameras_per_place, kRingRadius,
-             "place" + std::to_string(p), rng, layout);
-    if (p == 0 || o.link_spacing <= 0) continue;
-    const Eigen::Vector2d from(center.x() - o.place_distance + kRingRadius, 0);
-    const Eigen::Vector2d to(center.x() - kRingRadius, 0);
-    AddCorridorWalls(from, to, rng, layout);
-    AddCorridorCameras(from, to, o.link_spacing,
-                       "link" + std::to_string(p - 1) + "-" + std::to_string(p),
-                       rng, layout);
+  const std::vector<int> cameras = o.PlaceCameras();
+  int p = 0;
+  double row_y = 0.0;
+  for (const int row_length : o.PlaceRows()) {
+    double x = 0.0;
+    for (int k = 0; k < row_length; ++k, ++p) {
+      const double link_length =
+          o.place_distance *
+          (o.vary_link_lengths ? 1.0 + 0.5 * ((k - 1) % 3) : 1.0);
+      if (k > 0) x += link_length;
+      const Eigen::Vector2d center(x, row_y);
+      AddPlace(center, 0.0, cameras[p], kRingRadius,
+               "place" + std::to_string(p), rng, layout);
+      if (k == 0 || o.link_spacing <= 0) continue;
+      const Eigen::Vector2d from(x - link_length + kRingRadius, row_y);
+      const Eigen::Vector2d to(x - kRingRadius, row_y);
+      AddCorridorWalls(from, to, rng, layout);
+      AddCorridorCameras(
+          from, to, o.link_spacing,
+          "link" + std::to_string(p - 1) + "-" + std::to_string(p), rng,
+          layout);
+    }
+    // The next row beyond the range of every camera of this one.
+    row_y -= 4 * o.place_distance;
   }
   // Unlinked places far off the line, beyond the range of every camera.
   for (int q = 0; q < o.num_unlinked_places; ++q) {
     const Eigen::Vector2d center(q * o.place_distance, 4 * o.place_distance);
     AddPlace(center, Uniform(rng, 0, kPi / 2), o.cameras_per_place, kRingRadius,
-             "place" + std::to_string(o.num_places + q), rng, layout);
+             "place" + std::to_string(p + q), rng, layout);
   }
 }
 

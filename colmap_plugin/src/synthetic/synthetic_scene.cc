@@ -6,9 +6,12 @@
 #include <colmap/scene/reconstruction.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <numeric>
 #include <random>
+#include <sstream>
 
 #include "synthetic/observations.h"
 #include "synthetic/scene_layout.h"
@@ -140,6 +143,39 @@ colmap::Reconstruction GroundTruth(
 
 }  // namespace
 
+namespace {
+
+// "40,90,200" as numbers >= 1; empty for anything else.
+std::vector<int> ParseCounts(const std::string& text) {
+  std::vector<int> counts;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    size_t end = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &end);
+    } catch (const std::exception&) {
+      return {};
+    }
+    if (end != item.size() || value < 1) return {};
+    counts.push_back(value);
+  }
+  return counts;
+}
+
+}  // namespace
+
+std::vector<int> SyntheticSceneOptions::PlaceCameras() const {
+  if (place_cameras.empty())
+    return std::vector<int>(std::max(num_places, 0), cameras_per_place);
+  return ParseCounts(place_cameras);
+}
+
+std::vector<int> SyntheticSceneOptions::PlaceRows() const {
+  if (place_rows.empty()) return {static_cast<int>(PlaceCameras().size())};
+  return ParseCounts(place_rows);
+}
+
 bool SyntheticSceneOptions::Check(std::string* error) const {
   auto fail = [&](const std::string& message) {
     if (error) *error = message;
@@ -159,6 +195,14 @@ bool SyntheticSceneOptions::Check(std::string* error) const {
         "need num_places >= 1, cameras_per_place >= 3, num_unlinked_places >= "
         "0");
   }
+  const std::vector<int> cameras = PlaceCameras();
+  if (cameras.empty() ||
+      std::any_of(cameras.begin(), cameras.end(), [](int n) { return n < 3; }))
+    return fail("place_cameras must list numbers >= 3, e.g. 40,90,200");
+  const std::vector<int> rows = PlaceRows();
+  if (rows.empty() ||
+      std::accumulate(rows.begin(), rows.end(), size_t{0}) != cameras.size())
+    return fail("place_rows must list row lengths that add up to the places");
   if (link_spacing < 0 || place_distance < 60) {
     return fail("need link_spacing >= 0 and place_distance >= 60");
   }

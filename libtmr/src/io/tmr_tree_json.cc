@@ -14,22 +14,12 @@ namespace {
 
 using nlohmann::json;
 
-const char* OriginName(KernelOrigin origin) {
-  switch (origin) {
-    case KernelOrigin::kLayer:
-      return "layer";
-    case KernelOrigin::kCarved:
-      return "carved";
-    case KernelOrigin::kRescue:
-      return "rescue";
-  }
-  return "layer";
-}
-
 KernelOrigin OriginFromName(const std::string& name) {
-  if (name == "carved") return KernelOrigin::kCarved;
-  if (name == "rescue") return KernelOrigin::kRescue;
-  if (name == "layer") return KernelOrigin::kLayer;
+  for (const KernelOrigin origin :
+       {KernelOrigin::kPlace, KernelOrigin::kLayer, KernelOrigin::kCarved,
+        KernelOrigin::kRescue}) {
+    if (name == KernelOriginName(origin)) return origin;
+  }
   throw std::runtime_error("unknown kernel origin '" + name + "'");
 }
 
@@ -49,6 +39,8 @@ json Parameters(const TmrTreeOptions& o) {
             {"epsilon", o.kernels.epsilon},
             {"min_kernel_size", o.kernels.min_kernel_size},
             {"kernel_size_floor", o.kernels.kernel_size_floor},
+            {"per_place", o.kernels.per_place},
+            {"place_core_neighbors", o.kernels.place_core_neighbors},
             {"max_recursion_depth", o.kernels.max_recursion_depth}}},
           {"exemplar",
            {{"beta1", o.exemplar.beta1},
@@ -57,7 +49,9 @@ json Parameters(const TmrTreeOptions& o) {
             {"ap_max_iterations", o.exemplar.ap.max_iterations},
             {"ap_convergence_iterations", o.exemplar.ap.convergence_iterations},
             {"num_second_images", o.exemplar.num_second_images}}},
-          {"image_clustering", {{"num_layers", o.image_clustering.num_layers}}},
+          {"image_clustering",
+           {{"num_layers", o.image_clustering.num_layers},
+            {"min_bridge_side", o.image_clustering.min_bridge_side}}},
           {"leaf_clustering",
            {{"r", o.leaf_clustering.r},
             {"sigma",
@@ -100,6 +94,8 @@ TmrTreeOptions ParametersFromJson(const json& p) {
     Get(k, "epsilon", &o.kernels.epsilon);
     Get(k, "min_kernel_size", &o.kernels.min_kernel_size);
     Get(k, "kernel_size_floor", &o.kernels.kernel_size_floor);
+    Get(k, "per_place", &o.kernels.per_place);
+    Get(k, "place_core_neighbors", &o.kernels.place_core_neighbors);
     Get(k, "max_recursion_depth", &o.kernels.max_recursion_depth);
   }
   if (p.contains("exemplar")) {
@@ -113,6 +109,8 @@ TmrTreeOptions ParametersFromJson(const json& p) {
   }
   if (p.contains("image_clustering")) {
     Get(p.at("image_clustering"), "num_layers", &o.image_clustering.num_layers);
+    Get(p.at("image_clustering"), "min_bridge_side",
+        &o.image_clustering.min_bridge_side);
   }
   if (p.contains("leaf_clustering")) {
     const json& l = p.at("leaf_clustering");
@@ -147,7 +145,7 @@ void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
                        {"second_images", Names(tree, node.second_images)},
                        {"ap_centres", Names(tree, node.ap_centres)},
                        {"exemplar_score", node.exemplar_score},
-                       {"origin", OriginName(node.origin)},
+                       {"origin", KernelOriginName(node.origin)},
                        {"layer", node.layer},
                        {"kernel_images", Names(tree, node.kernel_images)},
                        {"leaf_clusters", std::move(leaf_clusters)}});

@@ -1,12 +1,15 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "tmr/partition/image_clustering.h"
 
+#include <algorithm>
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <boost/graph/filtered_graph.hpp>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace tmr {
 namespace {
@@ -44,13 +47,35 @@ CsrGraph ToCsr(const ImageGraph& graph) {
                   edges.end(), weights.begin(), graph.NumVertices());
 }
 
+// D without the single-pair links between two groups of at least
+// `min_side` images (all of D for 0).
+ImageGraph WithoutBridges(const ImageGraph& graph, int min_side) {
+  if (min_side <= 0) return graph;
+  const std::vector<WeightedEdge> bridges = FindBridges(graph, min_side);
+  if (bridges.empty()) return graph;
+  std::vector<WeightedEdge> kept;
+  kept.reserve(graph.NumEdges() - bridges.size());
+  size_t b = 0;  // bridges come in edge-list order
+  for (const WeightedEdge& e : graph.Edges()) {
+    if (b < bridges.size() && std::min(e.u, e.v) == bridges[b].u &&
+        std::max(e.u, e.v) == bridges[b].v) {
+      ++b;
+      continue;
+    }
+    kept.push_back(e);
+  }
+  return ImageGraph(graph.NumVertices(), std::move(kept));
+}
+
 }  // namespace
 
 bool MultiLayerShortestPathOptions::Check(std::string* error) const {
-  if (num_layers < 1) {
-    if (error) *error = "num_layers must be >= 1";
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
     return false;
-  }
+  };
+  if (num_layers < 1) return fail("num_layers must be >= 1");
+  if (min_bridge_side < 0) return fail("min_bridge_side must be >= 0");
   return true;
 }
 
@@ -75,7 +100,8 @@ ImageClusters AssignByMultiLayerShortestPath(
   }
   if (exemplars.empty() || difference.NumEdges() == 0) return result;
 
-  const CsrGraph graph = ToCsr(difference);
+  const CsrGraph graph =
+      ToCsr(WithoutBridges(difference, options.min_bridge_side));
   const double min_d = difference.MinWeight();
   const double step = (difference.MaxWeight() - min_d) / options.num_layers;
   std::vector<double> distance(n);

@@ -23,6 +23,7 @@ TEST(MultiLayerShortestPath, EvenPathBeatsShorterPathWithWeakEdge) {
                          {G1, E2, 0.3}});
   const std::vector<std::vector<int>> kernels = {{E1}, {E2}};
   MultiLayerShortestPathOptions options;
+  options.min_bridge_side = 0;  // every edge of this path is a bridge
   const ImageClusters msp =
       AssignByMultiLayerShortestPath(d, kernels, {E1, E2}, options);
   EXPECT_EQ(msp.cluster[W], 1);
@@ -66,18 +67,53 @@ TEST(MultiLayerShortestPath, PathThroughAnotherClusterJoinsThatCluster) {
   EXPECT_NEAR(result.path_length[X], 0.2, 1e-12);
 }
 
+// The paper's rule (min_bridge_side 0): the chain of single pairs between
+// the groups splits by distance, its first images to A, its last to B.
 TEST(MultiLayerShortestPath, TwoGroupsSplitAtTheChain) {
   const test::TwoGroups scene(18, 30, /*with_chain=*/true);
   const ImageGraph d = BuildDifferenceGraph(BuildSimilarityGraph(
       test::MatchGraphWithSimilarities(scene.num_images, scene.edges)));
-  const ImageClusters result =
-      AssignByMultiLayerShortestPath(d, {scene.group_a, scene.group_b},
-                                     {scene.group_a[0], scene.group_b[0]}, {});
+  MultiLayerShortestPathOptions options;
+  options.min_bridge_side = 0;
+  const ImageClusters result = AssignByMultiLayerShortestPath(
+      d, {scene.group_a, scene.group_b}, {scene.group_a[0], scene.group_b[0]},
+      options);
   for (const int v : scene.leaves_a) EXPECT_EQ(result.cluster[v], 0) << v;
   for (const int v : scene.leaves_b) EXPECT_EQ(result.cluster[v], 1) << v;
-  // The chain splits by distance: its first images go to A, its last to B.
   EXPECT_EQ(result.cluster[scene.chain_images.front()], 0);
   EXPECT_EQ(result.cluster[scene.chain_images.back()], 1);
+}
+
+// A group of 9 images that one pair (a false pair, say) links to a kernel's
+// place stays out of that kernel's cluster; a photo on its own single pair
+// still joins, and so does a group linked by two pairs.
+TEST(MultiLayerShortestPath, SinglePairLinksPullNoGroupIntoACluster) {
+  std::vector<WeightedEdge> edges;
+  auto clique = [&](int first, int size, double d) {
+    for (int i = first; i < first + size; ++i) {
+      for (int j = i + 1; j < first + size; ++j) edges.push_back({i, j, d});
+    }
+  };
+  clique(0, 10, 0.5);              // the kernel's place, 0-9
+  clique(10, 9, 0.6);              // a group behind one pair, 10-18
+  edges.push_back({3, 12, 0.95});  // that pair
+  edges.push_back({5, 19, 0.9});   // a lone photo, 19
+  clique(20, 4, 0.6);              // a group behind two pairs, 20-23
+  edges.push_back({1, 20, 0.9});
+  edges.push_back({2, 21, 0.9});
+  const ImageGraph d(24, edges);
+  std::vector<int> kernel(10);
+  for (int v = 0; v < 10; ++v) kernel[v] = v;
+  const ImageClusters result =
+      AssignByMultiLayerShortestPath(d, {kernel}, {0}, {});
+  for (int v = 10; v < 19; ++v) EXPECT_EQ(result.cluster[v], -1) << v;
+  EXPECT_EQ(result.cluster[19], 0);
+  for (int v = 20; v < 24; ++v) EXPECT_EQ(result.cluster[v], 0) << v;
+
+  MultiLayerShortestPathOptions paper;
+  paper.min_bridge_side = 0;
+  EXPECT_EQ(AssignByMultiLayerShortestPath(d, {kernel}, {0}, paper).cluster,
+            std::vector<int>(24, 0));
 }
 
 }  // namespace

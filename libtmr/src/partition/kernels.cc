@@ -7,6 +7,9 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
+
+#include "tmr/partition/dense_places.h"
 
 namespace tmr {
 namespace {
@@ -71,7 +74,22 @@ class KernelSearch {
     return found;
   }
 
-  // Gives a kernel to every connected part of S without one.
+  // The kernels of a dense place: the place itself when it is small enough,
+  // else the layered search on the range of its own similarities, else a
+  // kernel carved from its densest image.
+  void SearchPlace(const std::vector<int>& place) {
+    if (static_cast<int>(place.size()) <= max_size_) {
+      AddKernel(place, KernelOrigin::kPlace, 0);
+      return;
+    }
+    const auto [min_s, max_s] = WeightRangeWithin(place);
+    const double a = std::min(min_s + o_.epsilon, max_s);
+    if (Search(place, a, max_s, 0, 0) == 0)
+      Carve(place, -1.0, KernelOrigin::kCarved, 0);
+  }
+
+  // Gives a kernel to every connected part of S without one. A part below
+  // the floor becomes one kernel whole: it has no other kernel to join.
   void Rescue() {
     std::vector<int> all(s_.NumVertices());
     std::iota(all.begin(), all.end(), 0);
@@ -134,16 +152,26 @@ class KernelSearch {
   }
 
   double MaxWeightWithin(const std::vector<int>& component) {
+    return WeightRangeWithin(component).second;
+  }
+
+  // Smallest and largest weight of the edges between active vertices of
+  // `component` (+inf and -inf without such an edge).
+  std::pair<double, double> WeightRangeWithin(
+      const std::vector<int>& component) {
     in_set_.assign(s_.NumVertices(), false);
     for (const int v : component) in_set_[v] = active_[v];
-    double best = -std::numeric_limits<double>::infinity();
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
     for (const int v : component) {
       const auto [begin, end] = s_.Neighbors(v);
       for (auto* it = begin; it != end; ++it) {
-        if (in_set_[it->vertex]) best = std::max(best, it->weight);
+        if (!in_set_[it->vertex]) continue;
+        low = std::min(low, it->weight);
+        high = std::max(high, it->weight);
       }
     }
-    return best;
+    return {low, high};
   }
 
   // Grows a kernel of about (1 + alpha) / 2 * m images from the active image
@@ -210,6 +238,20 @@ class KernelSearch {
 
 }  // namespace
 
+const char* KernelOriginName(KernelOrigin origin) {
+  switch (origin) {
+    case KernelOrigin::kPlace:
+      return "place";
+    case KernelOrigin::kLayer:
+      return "layer";
+    case KernelOrigin::kCarved:
+      return "carved";
+    case KernelOrigin::kRescue:
+      return "rescue";
+  }
+  return "layer";
+}
+
 bool KernelOptions::Check(std::string* error) const {
   auto fail = [&](const std::string& message) {
     if (error) *error = message;
@@ -228,6 +270,8 @@ bool KernelOptions::Check(std::string* error) const {
     return fail("min_kernel_size must be in [2, max_kernel_size]");
   }
   if (max_recursion_depth < 0) return fail("max_recursion_depth must be >= 0");
+  if (place_core_neighbors < 1)
+    return fail("place_core_neighbors must be >= 1");
   if (kernel_size_floor < 2 || kernel_size_floor > max_kernel_size) {
     return fail("kernel_size_floor must be in [2, max_kernel_size]");
   }
@@ -246,7 +290,14 @@ std::vector<Kernel> FindKernels(const ImageGraph& similarity,
   if (!options.Check(&error))
     throw std::invalid_argument("KernelOptions: " + error);
   KernelSearch search(similarity, options);
-  if (similarity.NumEdges() > 0) {
+  if (similarity.NumEdges() > 0 && options.per_place) {
+    DensePlaceOptions places;
+    places.min_place_size =
+        std::max(options.min_kernel_size, options.kernel_size_floor);
+    places.core_neighbors = options.place_core_neighbors;
+    for (const DensePlace& place : FindDensePlaces(similarity, places))
+      search.SearchPlace(place.images);
+  } else if (similarity.NumEdges() > 0) {
     const double b = similarity.MaxWeight();
     const double a = std::min(similarity.MinWeight() + options.epsilon, b);
     std::vector<int> all(similarity.NumVertices());

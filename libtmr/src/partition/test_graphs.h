@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "tmr/partition/kernels.h"
 #include "tmr/scene/image_graph.h"
 #include "tmr/scene/match_graph.h"
 
@@ -35,6 +36,60 @@ inline MatchGraph MatchGraphWithSimilarities(
       });
   return graph;
 }
+
+// The paper's kernel search at the scale of these hand-made graphs of tens
+// of images: its floor of 3 instead of 30, the layers on the whole graph
+// instead of per dense place.
+inline KernelOptions PaperKernelOptions() {
+  KernelOptions options;
+  options.kernel_size_floor = 3;
+  options.per_place = false;
+  return options;
+}
+
+// Dense places of the given sizes, each a ring of cameras that sees its
+// neighbours up to 12 positions away (s = 0.3 next to each other, falling
+// to 0.05), chained in order by streets of `street_length` images (each
+// sees the next two, s = 0.04 and 0.02; its ends see two place images at
+// s = 0.02; no street and no link for street_length 0). Images: the places
+// first, in order, then the streets.
+struct PlacesAndStreets {
+  std::vector<std::vector<int>> places;
+  std::vector<int> streets;
+  std::vector<WeightedEdge> edges;
+  int num_images = 0;
+
+  PlacesAndStreets(const std::vector<int>& sizes, int street_length) {
+    for (const int n : sizes) {
+      places.emplace_back();
+      for (int i = 0; i < n; ++i) places.back().push_back(num_images + i);
+      for (int i = 0; i < n; ++i) {
+        for (int d = 1; d <= std::min(12, n / 2); ++d) {
+          const int j = (i + d) % n;
+          if (2 * d == n && j < i) continue;  // the opposite pair once
+          edges.push_back(
+              {num_images + i, num_images + j, 0.05 + 0.25 * (12 - d) / 11.0});
+        }
+      }
+      num_images += n;
+    }
+    for (size_t p = 0; street_length > 0 && p + 1 < places.size(); ++p) {
+      std::vector<int> street;
+      for (int i = 0; i < street_length; ++i) street.push_back(num_images++);
+      for (int i = 0; i < street_length; ++i) {
+        if (i + 1 < street_length)
+          edges.push_back({street[i], street[i + 1], 0.04});
+        if (i + 2 < street_length)
+          edges.push_back({street[i], street[i + 2], 0.02});
+      }
+      for (const int k : {0, 1}) {
+        edges.push_back({places[p][k], street.front(), 0.02});
+        edges.push_back({places[p + 1][k], street.back(), 0.02});
+      }
+      streets.insert(streets.end(), street.begin(), street.end());
+    }
+  }
+};
 
 // Two dense groups of `group` images (s = 0.5 inside), each with `leaves`
 // leaf images hanging off it (s = 0.15 to two group images, 0.12 to the

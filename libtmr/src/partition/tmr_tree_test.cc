@@ -18,6 +18,15 @@ MatchGraph TwoGroupsWithChain() {
   return graph;
 }
 
+// These graphs have groups of 18 images joined by a chain of single pairs:
+// the paper's floor of 3, and its image clustering, which crosses them.
+TmrTreeOptions SmallScaleOptions() {
+  TmrTreeOptions options;
+  options.kernels.kernel_size_floor = 3;
+  options.image_clustering.min_bridge_side = 0;
+  return options;
+}
+
 std::string Json(const TmrTree& tree) {
   std::ostringstream out;
   WriteTmrTreeJson(tree, out);
@@ -26,7 +35,7 @@ std::string Json(const TmrTree& tree) {
 
 TEST(TmrTree, TwoGroupsGiveTwoKernelsWithClustersAndLeaves) {
   const MatchGraph graph = TwoGroupsWithChain();
-  const TmrTree tree = BuildTmrTree(graph, {});
+  const TmrTree tree = BuildTmrTree(graph, SmallScaleOptions());
   ASSERT_EQ(tree.kernels.size(), 2u);
   EXPECT_EQ(tree.unclustered, std::vector<int>{graph.NumImages() - 1});
   int clustered = 0;
@@ -45,7 +54,7 @@ TEST(TmrTree, TwoGroupsGiveTwoKernelsWithClustersAndLeaves) {
 
 TEST(TmrTree, SameSeedSameTreeAndJsonRoundTrip) {
   const MatchGraph graph = TwoGroupsWithChain();
-  TmrTreeOptions options;
+  TmrTreeOptions options = SmallScaleOptions();
   options.seed = 17;
   const TmrTree a = BuildTmrTree(graph, options);
   const TmrTree b = BuildTmrTree(graph, options);
@@ -72,7 +81,8 @@ TEST(TmrTree, SameSeedSameTreeAndJsonRoundTrip) {
 }
 
 TEST(TmrTree, JsonHasTheDocumentedFields) {
-  const std::string json = Json(BuildTmrTree(TwoGroupsWithChain(), {}));
+  const std::string json =
+      Json(BuildTmrTree(TwoGroupsWithChain(), SmallScaleOptions()));
   for (const char* field :
        {"\"exemplar\"", "\"second_image\"", "\"kernel_images\"",
         "\"leaf_clusters\"", "\"unclustered\"", "\"parameters\""}) {

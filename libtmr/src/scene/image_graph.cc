@@ -94,6 +94,61 @@ ImageGraph BuildSimilarityGraph(const MatchGraph& match_graph) {
   return ImageGraph(match_graph.NumImages(), std::move(edges));
 }
 
+std::vector<WeightedEdge> FindBridges(const ImageGraph& graph, int min_side) {
+  const int n = graph.NumVertices();
+  std::vector<int> order(n, -1), low(n, 0), subtree(n, 1), parent(n, -1);
+  std::vector<int> part_of(n, 0), part_size;
+  std::vector<int> bridge_children;  // v of each bridge (parent[v], v)
+  struct Frame {
+    int v;
+    const ImageGraph::Neighbor* next;
+  };
+  std::vector<Frame> stack;
+  int time = 0;
+  for (int root = 0; root < n; ++root) {
+    if (order[root] >= 0) continue;
+    const int part = static_cast<int>(part_size.size());
+    part_size.push_back(0);
+    order[root] = low[root] = time++;
+    stack.push_back({root, graph.Neighbors(root).first});
+    while (!stack.empty()) {
+      const int v = stack.back().v;
+      if (stack.back().next != graph.Neighbors(v).second) {
+        const int u = (stack.back().next++)->vertex;
+        if (order[u] < 0) {
+          parent[u] = v;
+          order[u] = low[u] = time++;
+          stack.push_back({u, graph.Neighbors(u).first});
+        } else if (u != parent[v]) {
+          low[v] = std::min(low[v], order[u]);
+        }
+        continue;
+      }
+      stack.pop_back();
+      part_of[v] = part;
+      ++part_size[part];
+      const int p = parent[v];
+      if (p < 0) continue;
+      low[p] = std::min(low[p], low[v]);
+      subtree[p] += subtree[v];
+      if (low[v] > order[p]) bridge_children.push_back(v);
+    }
+  }
+  std::vector<bool> is_bridge_child(n, false);
+  for (const int v : bridge_children) {
+    const int other_side = part_size[part_of[v]] - subtree[v];
+    if (std::min(subtree[v], other_side) >= min_side) is_bridge_child[v] = true;
+  }
+  std::vector<WeightedEdge> bridges;
+  for (const WeightedEdge& e : graph.Edges()) {
+    if ((is_bridge_child[e.v] && parent[e.v] == e.u) ||
+        (is_bridge_child[e.u] && parent[e.u] == e.v)) {
+      bridges.push_back({std::min(e.u, e.v), std::max(e.u, e.v), e.weight});
+    }
+  }
+  return bridges;
+}
+
 ImageGraph BuildDifferenceGraph(const ImageGraph& similarity_graph) {
   std::vector<WeightedEdge> edges = similarity_graph.Edges();
   for (WeightedEdge& e : edges) e.weight = 1.0 - e.weight;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace tmr {
 namespace {
@@ -79,6 +81,34 @@ TEST(ImageGraph, EmptyGraph) {
   EXPECT_EQ(g.NumEdges(), 0);
   EXPECT_EQ(g.Degree(2), 0);
   EXPECT_DOUBLE_EQ(g.MinWeight(), 0.0);
+}
+
+// Two triangles joined by the path 2-3-4 (two bridges) with a pendant
+// image 7 on 0 (a bridge with one image on its side), and a separate pair
+// 8-9 (a bridge of its own part).
+TEST(FindBridges, OnlyPairsThatAloneLinkGroupsOfTheGivenSize) {
+  const ImageGraph g(10, {{0, 1, 0.1},
+                          {1, 2, 0.1},
+                          {0, 2, 0.1},
+                          {2, 3, 0.2},
+                          {3, 4, 0.3},
+                          {4, 5, 0.1},
+                          {5, 6, 0.1},
+                          {4, 6, 0.1},
+                          {7, 0, 0.4},
+                          {8, 9, 0.5}});
+  auto pairs = [](const std::vector<WeightedEdge>& edges) {
+    std::vector<std::pair<int, int>> result;
+    for (const WeightedEdge& e : edges) result.emplace_back(e.u, e.v);
+    return result;
+  };
+  using Pairs = std::vector<std::pair<int, int>>;
+  EXPECT_EQ(pairs(FindBridges(g, 1)), (Pairs{{2, 3}, {3, 4}, {0, 7}, {8, 9}}));
+  EXPECT_EQ(pairs(FindBridges(g, 2)), (Pairs{{2, 3}, {3, 4}}));
+  EXPECT_EQ(pairs(FindBridges(g, 4)), (Pairs{{2, 3}}));  // sides 4 and 4
+  EXPECT_TRUE(FindBridges(g, 5).empty());
+  EXPECT_DOUBLE_EQ(FindBridges(g, 4)[0].weight, 0.2);
+  EXPECT_TRUE(FindBridges(ImageGraph(3, {}), 1).empty());
 }
 
 }  // namespace

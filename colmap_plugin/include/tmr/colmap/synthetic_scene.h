@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tmr {
 
@@ -44,6 +45,16 @@ struct SyntheticSceneOptions {
   double link_spacing = 3.0;
   // Distance between the centres of consecutive places (metres).
   double place_distance = 120.0;
+  // Cameras of each linked place, e.g. "40,90,200,60" (places of several
+  // sizes); empty: num_places places of cameras_per_place.
+  std::string place_cameras;
+  // The linked places form rows of these lengths, e.g. "3,2": places 0-2
+  // linked along one row, places 3-4 along another, out of every camera's
+  // range of the first; empty: one row.
+  std::string place_rows;
+  // Consecutive links of a row are 1, 1.5 and 2 times place_distance long
+  // in turn (streets of several lengths); false: all place_distance.
+  bool vary_link_lengths = false;
 
   // --- plazas (num_places and cameras_per_place as above) ---
   // Distance between the centres of neighbouring plazas on the grid and the
@@ -120,6 +131,11 @@ struct SyntheticSceneOptions {
 
   // Returns false (and fills `error`) for impossible values.
   bool Check(std::string* error = nullptr) const;
+  // Cameras of each linked place (place_cameras, else num_places times
+  // cameras_per_place) and the lengths of the rows they form (place_rows,
+  // else one row); empty when the text does not parse.
+  std::vector<int> PlaceCameras() const;
+  std::vector<int> PlaceRows() const;
 };
 
 // Figures of a written scene.

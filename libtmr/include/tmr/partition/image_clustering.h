@@ -11,6 +11,12 @@ namespace tmr {
 struct MultiLayerShortestPathOptions {
   // Number of layers L: [min d, max d] is cut into L equal steps (Eq. 6).
   int num_layers = 20;
+  // A pair that is the only link between two groups of at least this many
+  // images (a bridge of D: one photo to one photo) is never on a path, so
+  // it cannot pull a group into the cluster of a kernel on its other side;
+  // such a group without a kernel stays unclustered. 0 keeps every pair
+  // (the paper).
+  int min_bridge_side = 2;
 
   bool Check(std::string* error = nullptr) const;
 };
@@ -35,7 +41,8 @@ struct ImageClusters {
 // through its images), so every cluster is connected through its own images.
 // It keeps that cluster in later layers. Kernel images belong to their
 // kernel from the start. Paths found in an early layer avoid weak overlaps
-// (large d), as the paper's Fig. 5 asks.
+// (large d), as the paper's Fig. 5 asks. Not in the paper: paths never
+// cross a single-pair link between two groups (min_bridge_side).
 ImageClusters AssignByMultiLayerShortestPath(
     const ImageGraph& difference, const std::vector<std::vector<int>>& kernels,
     const std::vector<int>& exemplars,

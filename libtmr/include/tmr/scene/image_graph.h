@@ -61,4 +61,10 @@ ImageGraph BuildSimilarityGraph(const MatchGraph& match_graph);
 // Difference graph D (paper Eq. 2): the same edges with d_ij = 1 - s_ij.
 ImageGraph BuildDifferenceGraph(const ImageGraph& similarity_graph);
 
+// The bridges of the graph (edges whose removal splits their connected
+// part: the only pair that links two groups of images) that leave at least
+// `min_side` images on each side, by Tarjan's low-link depth-first search
+// (iterative, O(V + E)). Each edge is given with u < v, in edge-list order.
+std::vector<WeightedEdge> FindBridges(const ImageGraph& graph, int min_side);
+
 }  // namespace tmr
