@@ -6,6 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace tmr {
 namespace {
@@ -56,12 +57,12 @@ class GroupTree {
     for (int v = 0; v < s.NumVertices(); ++v) members_[v] = {v};
     const std::vector<double> core = CoreSimilarities(s, o.core_neighbors);
     std::vector<WeightedEdge> edges = s.Edges();
-    for (WeightedEdge& e : edges)
+    for (WeightedEdge& e : edges) {
       e.weight = std::min({e.weight, core[e.u], core[e.v]});
+      if (e.u > e.v) std::swap(e.u, e.v);
+    }
     std::sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) {
-      return std::make_tuple(-a.weight, std::min(a.u, a.v),
-                             std::max(a.u, a.v)) <
-             std::make_tuple(-b.weight, std::min(b.u, b.v), std::max(b.u, b.v));
+      return std::tie(b.weight, a.u, a.v) < std::tie(a.weight, b.u, b.v);
     });
     for (const WeightedEdge& e : edges) Join(e.u, e.v, e.weight);
   }

@@ -33,11 +33,25 @@ struct BelowThreshold {
   }
 };
 
-CsrGraph ToCsr(const ImageGraph& graph) {
+// D as a Boost.Graph CSR graph, without the single-pair links between two
+// groups of at least `min_side` images (none left out for 0) but for those
+// inside a kernel (its exemplar reaches all its images). kernel_of: kernel
+// of each image, -1 for none.
+CsrGraph ToCsrWithoutBridges(const ImageGraph& graph, int min_side,
+                             const std::vector<int>& kernel_of) {
+  const std::vector<WeightedEdge> bridges =
+      min_side > 0 ? FindBridges(graph, min_side) : std::vector<WeightedEdge>();
   std::vector<std::pair<int, int>> edges;
   std::vector<EdgeWeight> weights;
   edges.reserve(2 * graph.NumEdges());
+  weights.reserve(2 * graph.NumEdges());
+  size_t b = 0;  // bridges come in edge-list order
   for (const WeightedEdge& e : graph.Edges()) {
+    if (b < bridges.size() && std::min(e.u, e.v) == bridges[b].u &&
+        std::max(e.u, e.v) == bridges[b].v) {
+      ++b;
+      if (kernel_of[e.u] < 0 || kernel_of[e.u] != kernel_of[e.v]) continue;
+    }
     edges.emplace_back(e.u, e.v);
     edges.emplace_back(e.v, e.u);
     weights.push_back({e.weight});
@@ -45,26 +59,6 @@ CsrGraph ToCsr(const ImageGraph& graph) {
   }
   return CsrGraph(boost::edges_are_unsorted_multi_pass, edges.begin(),
                   edges.end(), weights.begin(), graph.NumVertices());
-}
-
-// D without the single-pair links between two groups of at least
-// `min_side` images (all of D for 0).
-ImageGraph WithoutBridges(const ImageGraph& graph, int min_side) {
-  if (min_side <= 0) return graph;
-  const std::vector<WeightedEdge> bridges = FindBridges(graph, min_side);
-  if (bridges.empty()) return graph;
-  std::vector<WeightedEdge> kept;
-  kept.reserve(graph.NumEdges() - bridges.size());
-  size_t b = 0;  // bridges come in edge-list order
-  for (const WeightedEdge& e : graph.Edges()) {
-    if (b < bridges.size() && std::min(e.u, e.v) == bridges[b].u &&
-        std::max(e.u, e.v) == bridges[b].v) {
-      ++b;
-      continue;
-    }
-    kept.push_back(e);
-  }
-  return ImageGraph(graph.NumVertices(), std::move(kept));
 }
 
 }  // namespace
@@ -101,7 +95,7 @@ ImageClusters AssignByMultiLayerShortestPath(
   if (exemplars.empty() || difference.NumEdges() == 0) return result;
 
   const CsrGraph graph =
-      ToCsr(WithoutBridges(difference, options.min_bridge_side));
+      ToCsrWithoutBridges(difference, options.min_bridge_side, result.cluster);
   const double min_d = difference.MinWeight();
   const double step = (difference.MaxWeight() - min_d) / options.num_layers;
   std::vector<double> distance(n);

@@ -114,6 +114,13 @@ TEST(MultiLayerShortestPath, SinglePairLinksPullNoGroupIntoACluster) {
   paper.min_bridge_side = 0;
   EXPECT_EQ(AssignByMultiLayerShortestPath(d, {kernel}, {0}, paper).cluster,
             std::vector<int>(24, 0));
+
+  // A kernel that holds both sides of the pair keeps it, so that its
+  // exemplar reaches all its images.
+  std::vector<int> both_sides = kernel;
+  for (int v = 10; v < 19; ++v) both_sides.push_back(v);
+  EXPECT_EQ(AssignByMultiLayerShortestPath(d, {both_sides}, {0}, {}).cluster,
+            std::vector<int>(24, 0));
 }
 
 }  // namespace

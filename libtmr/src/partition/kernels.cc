@@ -39,7 +39,10 @@ class KernelSearch {
         o_(o),
         m_(o.KernelSize(s.NumVertices())),
         max_size_(std::max(m_, static_cast<int>(std::floor(o.alpha * m_)))),
-        active_(s.NumVertices(), true) {}
+        active_(s.NumVertices(), true),
+        in_set_(s.NumVertices(), false),
+        local_(s.NumVertices(), -1),
+        link_(s.NumVertices(), 0.0) {}
 
   // Searches the active vertices of `vertices` on the layers of [a, b].
   // Returns the number of kernels found.
@@ -120,30 +123,45 @@ class KernelSearch {
  private:
   // Components (size >= 2) of the active vertices of `vertices` joined by
   // edges with weight > theta, each sorted, ordered by smallest vertex.
+  // O(size of `vertices` and their edges): a search per dense place costs
+  // what the place holds, not what the scene does.
   std::vector<std::vector<int>> Components(const std::vector<int>& vertices,
                                            double theta) {
-    in_set_.assign(s_.NumVertices(), false);
-    for (const int v : vertices) in_set_[v] = active_[v];
-    UnionFind uf(s_.NumVertices());
+    std::vector<int> members;  // the active vertices; local_ indexes them
     for (const int v : vertices) {
-      if (!in_set_[v]) continue;
-      const auto [begin, end] = s_.Neighbors(v);
+      if (!active_[v]) continue;
+      local_[v] = static_cast<int>(members.size());
+      members.push_back(v);
+    }
+    UnionFind uf(static_cast<int>(members.size()));
+    for (int i = 0; i < static_cast<int>(members.size()); ++i) {
+      const auto [begin, end] = s_.Neighbors(members[i]);
       for (auto* it = begin; it != end; ++it) {
-        if (it->vertex > v && in_set_[it->vertex] && it->weight > theta)
-          uf.Union(v, it->vertex);
+        const int j = local_[it->vertex];
+        if (j > i && it->weight > theta) uf.Union(i, j);
       }
     }
     std::map<int, std::vector<int>> groups;
-    for (const int v : vertices) {
-      if (in_set_[v]) groups[uf.Find(v)].push_back(v);
-    }
+    for (int i = 0; i < static_cast<int>(members.size()); ++i)
+      groups[uf.Find(i)].push_back(members[i]);
+    for (const int v : members) local_[v] = -1;
     std::vector<std::vector<int>> result;
     for (auto& [root, group] : groups) {
       if (group.size() < 2) continue;
       std::sort(group.begin(), group.end());
       result.push_back(std::move(group));
     }
+    std::sort(result.begin(), result.end());
     return result;
+  }
+
+  // in_set_: the active vertices of `vertices` (Unmark clears them again, so
+  // that in_set_ stays all false between calls).
+  void Mark(const std::vector<int>& vertices) {
+    for (const int v : vertices) in_set_[v] = active_[v];
+  }
+  void Unmark(const std::vector<int>& vertices) {
+    for (const int v : vertices) in_set_[v] = false;
   }
 
   int CountActive(const std::vector<int>& vertices) const {
@@ -159,8 +177,7 @@ class KernelSearch {
   // `component` (+inf and -inf without such an edge).
   std::pair<double, double> WeightRangeWithin(
       const std::vector<int>& component) {
-    in_set_.assign(s_.NumVertices(), false);
-    for (const int v : component) in_set_[v] = active_[v];
+    Mark(component);
     double low = std::numeric_limits<double>::infinity();
     double high = -low;
     for (const int v : component) {
@@ -171,6 +188,7 @@ class KernelSearch {
         high = std::max(high, it->weight);
       }
     }
+    Unmark(component);
     return {low, high};
   }
 
@@ -179,8 +197,7 @@ class KernelSearch {
   // adding each time the image with the largest summed similarity to it.
   void Carve(const std::vector<int>& component, double theta,
              KernelOrigin origin, int layer) {
-    in_set_.assign(s_.NumVertices(), false);
-    for (const int v : component) in_set_[v] = active_[v];
+    Mark(component);
     auto strength = [&](int v) {
       double sum = 0.0;
       const auto [begin, end] = s_.Neighbors(v);
@@ -196,11 +213,8 @@ class KernelSearch {
       const double value = strength(v);
       if (value > best) best = value, seed = v;
     }
-    if (seed < 0) return;
-    const int target =
-        std::min<int>(std::lround((1.0 + o_.alpha) / 2.0 * m_),
-                      std::count(in_set_.begin(), in_set_.end(), true));
-    std::vector<double> link(s_.NumVertices(), 0.0);
+    const int target = std::min<int>(std::lround((1.0 + o_.alpha) / 2.0 * m_),
+                                     CountActive(component));
     std::vector<int> kernel;
     for (int v = seed; v >= 0 && static_cast<int>(kernel.size()) < target;) {
       kernel.push_back(v);
@@ -208,14 +222,16 @@ class KernelSearch {
       const auto [begin, end] = s_.Neighbors(v);
       for (auto* it = begin; it != end; ++it) {
         if (in_set_[it->vertex] && it->weight > theta)
-          link[it->vertex] += it->weight;
+          link_[it->vertex] += it->weight;
       }
       v = -1;
       double strongest = 0.0;
       for (const int u : component) {
-        if (in_set_[u] && link[u] > strongest) strongest = link[u], v = u;
+        if (in_set_[u] && link_[u] > strongest) strongest = link_[u], v = u;
       }
     }
+    Unmark(component);
+    for (const int v : component) link_[v] = 0.0;
     if (static_cast<int>(kernel.size()) < o_.min_kernel_size) return;
     std::sort(kernel.begin(), kernel.end());
     AddKernel(kernel, origin, layer);
@@ -232,7 +248,9 @@ class KernelSearch {
   const int m_;
   const int max_size_;
   std::vector<bool> active_;
-  std::vector<bool> in_set_;
+  std::vector<bool> in_set_;  // all false outside Mark ... Unmark
+  std::vector<int> local_;    // -1 outside Components
+  std::vector<double> link_;  // 0 outside Carve
   std::vector<Kernel> kernels_;
 };
 

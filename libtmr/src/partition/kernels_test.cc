@@ -114,7 +114,7 @@ TEST(FindKernels, NeverZeroKernelsForConnectedParts) {
 }
 
 // Places of 35 to 200 images chained by streets (Z = 430, m = 65, kernels
-// of up to 97): every place has a kernel inside it, the two that fit are
+// of up to 97): every place has a kernel inside it, the three that fit are
 // kernels whole, the streets hold none, and no kernel is below the floor.
 TEST(FindKernels, AKernelForEveryDensePlaceWhateverItsSize) {
   const test::PlacesAndStreets scene({35, 90, 200, 60}, 15);

@@ -14,8 +14,8 @@ struct MultiLayerShortestPathOptions {
   // A pair that is the only link between two groups of at least this many
   // images (a bridge of D: one photo to one photo) is never on a path, so
   // it cannot pull a group into the cluster of a kernel on its other side;
-  // such a group without a kernel stays unclustered. 0 keeps every pair
-  // (the paper).
+  // such a group without a kernel stays unclustered. A pair inside a kernel
+  // is kept. 0 keeps every pair (the paper).
   int min_bridge_side = 2;
 
   bool Check(std::string* error = nullptr) const;
