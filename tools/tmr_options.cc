@@ -87,12 +87,7 @@ void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
       << " images, kernel size m = " << tree.kernel_size << ", "
       << tree.kernels.size() << " kernels, " << tree.unclustered.size()
       << " unclustered\n";
-  std::map<std::string, int> origins;
-  for (const TmrKernelNode& node : tree.kernels)
-    ++origins[KernelOriginName(node.origin)];
-  out << "kernels by origin:";
-  for (const auto& [origin, count] : origins)
-    out << " " << count << " " << origin;
+  out << "kernels by origin: " << DescribeKernels(tree);
   std::vector<size_t> leaf_sizes;
   for (const TmrKernelNode& node : tree.kernels) {
     for (const auto& leaf : node.leaf_clusters)

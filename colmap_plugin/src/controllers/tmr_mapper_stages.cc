@@ -1,12 +1,9 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "controllers/tmr_mapper_stages.h"
 
-#include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -88,23 +85,8 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
         error);
   }
   if (progress) {
-    std::map<std::string, int> origins;
-    size_t smallest = SIZE_MAX, largest = 0;
-    for (const TmrKernelNode& node : tree_.kernels) {
-      ++origins[KernelOriginName(node.origin)];
-      smallest = std::min(smallest, node.kernel_images.size());
-      largest = std::max(largest, node.kernel_images.size());
-    }
-    std::string kinds;
-    for (const auto& [origin, count] : origins)
-      kinds +=
-          (kinds.empty() ? "" : ", ") + std::to_string(count) + " " + origin;
-    if (!tree_.kernels.empty()) {
-      kinds += "; " + std::to_string(smallest) + "-" + std::to_string(largest) +
-               " images";
-    }
     progress("partition: " + std::to_string(tree_.kernels.size()) +
-             " kernels (" + kinds + "), " +
+             " kernels (" + DescribeKernels(tree_) + "), " +
              std::to_string(tree_.unclustered.size()) +
              " unclustered images (" +
              std::to_string(report->partition_seconds) + " s)");

@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <iterator>
+#include <map>
 #include <stdexcept>
+#include <string>
 
 #include "tmr/scene/image_graph.h"
 
@@ -90,6 +93,22 @@ TmrTree BuildTmrTree(const MatchGraph& match_graph,
   }
   tree.timing.leaf_clusters_s = SecondsSince(start);
   return tree;
+}
+
+std::string DescribeKernels(const TmrTree& tree) {
+  if (tree.kernels.empty()) return "";
+  std::map<std::string, int> origins;
+  size_t smallest = SIZE_MAX, largest = 0;
+  for (const TmrKernelNode& node : tree.kernels) {
+    ++origins[KernelOriginName(node.origin)];
+    smallest = std::min(smallest, node.kernel_images.size());
+    largest = std::max(largest, node.kernel_images.size());
+  }
+  std::string text;
+  for (const auto& [origin, count] : origins)
+    text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + origin;
+  return text + "; " + std::to_string(smallest) + "-" +
+         std::to_string(largest) + " images";
 }
 
 }  // namespace tmr

@@ -67,6 +67,10 @@ struct TmrTree {
 TmrTree BuildTmrTree(const MatchGraph& match_graph,
                      const TmrTreeOptions& options);
 
+// The kernels by origin and their size range, for summaries:
+// "8 place, 13 rescue; 3-64 images" ("" without kernels).
+std::string DescribeKernels(const TmrTree& tree);
+
 // tree.json: per kernel "exemplar", "second_image", "second_images",
 // "kernel_images", "leaf_clusters" (lists of names); top level
 // "unclustered", "kernel_size", "parameters", "timing_s". Images by name.
