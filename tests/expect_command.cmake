@@ -1,5 +1,7 @@
-# Runs COMMAND with ARGS and checks its exit code and standard error.
+# Runs COMMAND with ARGS and checks its exit code, standard error and
+# output.
 #   -DCOMMAND=... -DARGS=a;b -DEXPECT_EXIT=N -DEXPECT_STDERR=regex
+#   -DEXPECT_STDOUT=regex
 execute_process(COMMAND ${COMMAND} ${ARGS}
                 RESULT_VARIABLE exit_code
                 OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -8,5 +10,8 @@ if(NOT exit_code EQUAL EXPECT_EXIT)
 endif()
 if(DEFINED EXPECT_STDERR AND NOT err MATCHES "${EXPECT_STDERR}")
   message(FATAL_ERROR "stderr does not match '${EXPECT_STDERR}':\n${err}")
+endif()
+if(DEFINED EXPECT_STDOUT AND NOT out MATCHES "${EXPECT_STDOUT}")
+  message(FATAL_ERROR "stdout does not match '${EXPECT_STDOUT}':\n${out}")
 endif()
 message(STATUS "exit ${exit_code}, stderr: ${err}")

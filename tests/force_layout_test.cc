@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "force_layout.h"
+#include "drawing/force_layout.h"
 
 #include <gtest/gtest.h>
 

@@ -10,11 +10,6 @@
 
 namespace tmr {
 
-// Registers COLMAP's --Mapper.* pass-through options, tmr_mapper's --Tmr.*
-// options and the TMR-tree's --Tmr.* options, with their defaults.
-void AddTmrMapperOptions(boost::program_options::options_description* desc,
-                         TmrMapperOptions* options);
-
 // project.ini as COLMAP writes it: one `name=value` line per option given
 // or defaulted (not --help).
 std::string ProjectIni(const boost::program_options::options_description& desc,

@@ -17,8 +17,8 @@
 
 #include "tmr/colmap/model_evaluation.h"
 
+#include "drawing/top_view_picture.h"
 #include "tmr_options.h"
-#include "top_view_picture.h"
 
 namespace fs = std::filesystem;
 

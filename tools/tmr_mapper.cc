@@ -9,13 +9,14 @@
 //   tmr_mapper status --plan OUT/plan.txt
 //   tmr_mapper merge --plan OUT/plan.txt [--Mapper.num_threads N]
 // The later stages take the options from OUT/project.ini, which partition
-// writes with absolute paths.
+// writes with absolute paths. Each stage is a call of the library
+// (tmr/colmap/tmr_mapper.h); `tmr_mapper STAGE --help` lists its options.
 #include <boost/program_options.hpp>
 
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <set>
+#include <map>
 
 #include "mapper_options.h"
 #include "tmr/colmap/tmr_mapper.h"
@@ -26,17 +27,121 @@ namespace po = boost::program_options;
 
 namespace {
 
+// The first line of each stage's --help.
+const std::map<std::string, std::string>& StageUsage() {
+  static const std::map<std::string, std::string> usage = {
+      {"run",
+       "tmr_mapper --database_path DB --output_path OUT [options]: COLMAP's "
+       "incremental mapper on the TMR-tree (stages: partition, run_task, "
+       "status, merge; `tmr_mapper STAGE --help`)"},
+      {"partition",
+       "tmr_mapper partition --database_path DB --output_path OUT [options]: "
+       "the TMR-tree, the task plan OUT/plan.txt and OUT/project.ini"},
+      {"run_task",
+       "tmr_mapper run_task --plan OUT/plan.txt --task ID: one kernel or leaf "
+       "task of the plan (options from OUT/project.ini)"},
+      {"status",
+       "tmr_mapper status --plan OUT/plan.txt: each task of the plan, done or "
+       "todo"},
+      {"merge",
+       "tmr_mapper merge --plan OUT/plan.txt: merges the finished tasks into "
+       "the models OUT/0, 1, ..."}};
+  return usage;
+}
+
 int Error(const std::string& message, int code = 1) {
   std::cerr << "tmr_mapper: error: " << message << "\n";
   return code;
 }
 
-void PrintModels(const tmr::TmrMapperReport& report) {
+// The project.ini beside the --plan of the command line; "" without one.
+std::string ProjectIniOfPlan(int argc, char** argv) {
+  std::string ini;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    std::string path;
+    if (arg == "--plan" && i + 1 < argc) path = argv[i + 1];
+    if (arg.rfind("--plan=", 0) == 0) path = arg.substr(7);
+    if (!path.empty())
+      ini = (fs::path(path).parent_path() / "project.ini").string();
+  }
+  return ini;
+}
+
+bool AsksForHelp(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") return true;
+  }
+  return false;
+}
+
+// Writes OUT/project.ini: the effective options, as COLMAP writes them;
+// with absolute paths for the partition stage, whose later stages may run
+// on other machines.
+void WriteProjectIni(const std::string& stage, const tmr::TmrMapperOptions& o,
+                     const po::options_description& desc,
+                     po::variables_map vm) {
+  if (stage == "partition") {
+    for (const char* path : {"database_path", "output_path", "image_path"}) {
+      if (vm.count(path)) {
+        vm.at(path).value() = fs::absolute(vm[path].as<std::string>())
+                                  .lexically_normal()
+                                  .string();
+      }
+    }
+  }
+  tmr::WriteFileAtomically((fs::path(o.output_path) / "project.ini").string(),
+                           tmr::ProjectIni(desc, vm));
+}
+
+// partition and status: one line per task (id, images, base images, state).
+int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
+                 const std::function<void(const std::string&)>& progress) {
+  std::vector<tmr::TmrMapperTask> tasks;
+  std::string error;
+  const bool ok = stage == "partition"
+                      ? tmr::PlanTmrMapper(o, &tasks, &error, progress)
+                      : tmr::ReadTmrMapperPlan(o, &tasks, &error);
+  if (!ok) return Error(error);
+  if (stage == "partition" && !tmr::DrawMapperPartitionPicture(o))
+    progress("partition.png skipped: too many images to draw");
+  for (const tmr::TmrMapperTask& t : tasks) {
+    std::cout << t.id << " " << t.num_images << " " << t.num_base_images << " "
+              << (t.finished ? "done" : "todo") << "\n";
+  }
+  return 0;
+}
+
+int RunTask(const tmr::TmrMapperOptions& o, const std::string& task) {
+  tmr::TmrTaskReport row;
+  std::string error;
+  if (!tmr::RunTmrMapperTask(o, task, &row, &error)) return Error(error);
+  std::cout << "tmr_mapper: " << task << ": " << row.num_registered << "/"
+            << row.num_images << " images in " << std::fixed
+            << std::setprecision(1) << row.seconds << " s"
+            << (row.reused ? " (finished earlier)" : "") << "; " << row.message
+            << "\n";
+  return 0;
+}
+
+// run and merge: the models, and a summary line.
+int RunOrMerge(const std::string& stage, const tmr::TmrMapperOptions& o,
+               const std::function<void(const std::string&)>& progress) {
+  tmr::TmrMapperReport report;
+  std::string error;
+  const bool ok = stage == "merge"
+                      ? tmr::MergeTmrMapper(o, &report, &error, progress)
+                      : tmr::RunTmrMapper(o, &report, &error, progress);
+  if (!ok) return Error(error);
+  if (stage == "run" && !tmr::DrawMapperPartitionPicture(o))
+    progress("partition.png skipped: too many images to draw");
   std::cout << "tmr_mapper: " << report.num_images << " images, "
             << report.model_sizes.size() << " models (registered:";
   for (const int size : report.model_sizes) std::cout << " " << size;
   std::cout << ") in " << std::fixed << std::setprecision(1)
             << report.total_seconds << " s\n";
+  return 0;
 }
 
 }  // namespace
@@ -50,23 +155,15 @@ int main(int argc, char** argv) {
     ++argv;
     --argc;
   }
-  const std::set<std::string> kStages = {"run", "partition", "run_task",
-                                         "status", "merge"};
-  if (!kStages.count(stage)) {
+  if (!StageUsage().count(stage)) {
     return Error(
         "unknown stage '" + stage + "' (partition, run_task, status or merge)",
         2);
   }
-  const bool from_plan = stage != "run" && stage != "partition";
   tmr::TmrMapperOptions o;
   bool verbose = false;
   std::string plan, task;
-  po::options_description desc(
-      "tmr_mapper [partition|run_task|status|merge]: COLMAP's incremental "
-      "mapper on the TMR-tree");
-  auto add = [&desc](const char* name, auto* value, const char* help) {
-    tmr::AddOption(&desc, name, value, help);
-  };
+  po::options_description desc(StageUsage().at(stage));
   desc.add_options()("help,h", "print this help")(
       "database_path", po::value(&o.database_path)->required(),
       "COLMAP database (read-only)")(
@@ -77,27 +174,24 @@ int main(int argc, char** argv) {
       "plan", po::value(&plan),
       "run_task, status, merge: OUT/plan.txt of a partition stage")(
       "task", po::value(&task), "run_task: kernel.K or leaf.K.L");
-  add("verbose", &verbose, "show COLMAP's own log");
-  tmr::AddTmrMapperOptions(&desc, &o);
-  po::variables_map vm;
+  tmr::AddOption(&desc, "verbose", &verbose, "show COLMAP's own log");
+  tmr::AddOptionsOf(&desc, &o);
+
   // The later stages read the partition's options after the command line,
   // whose values win (boost keeps the first value stored).
-  std::string ini;
-  for (int i = 1; from_plan && i < argc; ++i) {
-    const std::string arg = argv[i];
-    std::string path;
-    if (arg == "--plan" && i + 1 < argc) path = argv[i + 1];
-    if (arg.rfind("--plan=", 0) == 0) path = arg.substr(7);
-    if (!path.empty())
-      ini = (fs::path(path).parent_path() / "project.ini").string();
-  }
-  if (from_plan && ini.empty()) return Error(stage + " needs --plan", 2);
-  if (from_plan && !fs::is_regular_file(ini)) {
+  const bool from_plan = stage != "run" && stage != "partition";
+  const bool help = AsksForHelp(argc, argv);
+  const std::string ini =
+      from_plan && !help ? ProjectIniOfPlan(argc, argv) : "";
+  if (from_plan && !help && ini.empty())
+    return Error(stage + " needs --plan", 2);
+  if (!ini.empty() && !fs::is_regular_file(ini)) {
     return Error("no '" + ini + "' beside the plan (run `tmr_mapper " +
                  "partition` first)");
   }
-  if (const auto exit_code = tmr::ParseCommandLine(
-          "tmr_mapper", argc, argv, desc, &vm, {}, from_plan ? ini : "")) {
+  po::variables_map vm;
+  if (const auto exit_code =
+          tmr::ParseCommandLine("tmr_mapper", argc, argv, desc, &vm, {}, ini)) {
     return *exit_code;
   }
   if (stage == "run_task" && task.empty())
@@ -106,7 +200,6 @@ int main(int argc, char** argv) {
   if (!o.Check(&error)) return Error(error, 2);
   tmr::ConfigureColmapLogging(argv[0], verbose);
   const auto progress = tmr::TimedProgressLines();
-  tmr::TmrMapperReport report;
   try {
     std::error_code ec;
     fs::create_directories(o.output_path, ec);
@@ -114,54 +207,12 @@ int main(int argc, char** argv) {
       return Error("cannot create output folder '" + o.output_path +
                    "': " + ec.message());
     }
-    if (stage == "run" || stage == "partition") {
-      // project.ini: the effective options, as COLMAP writes them; with
-      // absolute paths, for the stages that read it on other machines.
-      if (stage == "partition") {
-        for (const char* path : {"database_path", "output_path", "image_path"})
-          if (vm.count(path))
-            vm.at(path).value() = fs::absolute(vm[path].as<std::string>())
-                                      .lexically_normal()
-                                      .string();
-      }
-      tmr::WriteFileAtomically(
-          (fs::path(o.output_path) / "project.ini").string(),
-          tmr::ProjectIni(desc, vm));
-    }
-    std::vector<tmr::TmrMapperTask> tasks;
-    if (stage == "partition" || stage == "status") {
-      const bool ok = stage == "partition"
-                          ? tmr::PlanTmrMapper(o, &tasks, &error, progress)
-                          : tmr::ReadTmrMapperPlan(o, &tasks, &error);
-      if (!ok) return Error(error);
-      if (stage == "partition" && !tmr::DrawMapperPartitionPicture(o))
-        progress("partition.png skipped: too many images to draw");
-      // One line per task: id, images, base images, state.
-      for (const tmr::TmrMapperTask& t : tasks) {
-        std::cout << t.id << " " << t.num_images << " " << t.num_base_images
-                  << " " << (t.finished ? "done" : "todo") << "\n";
-      }
-      return 0;
-    }
-    if (stage == "run_task") {
-      tmr::TmrTaskReport row;
-      if (!tmr::RunTmrMapperTask(o, task, &row, &error)) return Error(error);
-      std::cout << "tmr_mapper: " << task << ": " << row.num_registered << "/"
-                << row.num_images << " images in " << std::fixed
-                << std::setprecision(1) << row.seconds << " s"
-                << (row.reused ? " (finished earlier)" : "") << "; "
-                << row.message << "\n";
-      return 0;
-    }
-    const bool ok = stage == "merge"
-                        ? tmr::MergeTmrMapper(o, &report, &error, progress)
-                        : tmr::RunTmrMapper(o, &report, &error, progress);
-    if (!ok) return Error(error);
-    if (stage == "run" && !tmr::DrawMapperPartitionPicture(o))
-      progress("partition.png skipped: too many images to draw");
+    if (!from_plan) WriteProjectIni(stage, o, desc, vm);
+    if (stage == "partition" || stage == "status")
+      return PlanOrStatus(stage, o, progress);
+    if (stage == "run_task") return RunTask(o, task);
+    return RunOrMerge(stage, o, progress);
   } catch (const std::exception& e) {
     return Error(e.what());
   }
-  PrintModels(report);
-  return 0;
 }

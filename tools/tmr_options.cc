@@ -8,6 +8,7 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace tmr {
@@ -39,47 +40,14 @@ std::optional<int> ParseCommandLine(
   return std::nullopt;
 }
 
-void AddTmrTreeOptions(po::options_description* desc, TmrTreeOptions* o) {
-  auto add = [desc](const char* name, auto* value, const char* help) {
-    AddOption(desc, name, value, help);
-  };
-  add("Tmr.seed", &o->seed, "seed of every random choice");
-  add("Tmr.max_kernel_size", &o->kernels.max_kernel_size,
-      "m = min(this, kernel_fraction * images)");
-  add("Tmr.kernel_fraction", &o->kernels.kernel_fraction,
-      "kernel size as a share of the images");
-  add("Tmr.alpha", &o->kernels.alpha, "kernels hold m to alpha * m images");
-  add("Tmr.kernel_layers", &o->kernels.num_layers,
-      "layers k of the kernel search");
-  add("Tmr.epsilon", &o->kernels.epsilon, "a = min(s) + epsilon");
-  add("Tmr.min_kernel_size", &o->kernels.min_kernel_size, "smallest kernel");
-  add("Tmr.kernel_size_floor", &o->kernels.kernel_size_floor,
-      "m, and every dense place, is at least this (the paper: 3)");
-  add("Tmr.kernels_per_place", &o->kernels.per_place,
-      "search kernels per dense place (0: the paper's layers on the whole "
-      "graph)");
-  add("Tmr.place_core_neighbors", &o->kernels.place_core_neighbors,
-      "an image's density is its this-th strongest pair (dense places)");
-  add("Tmr.beta1", &o->exemplar.beta1,
-      "weight of the mean similarity in the exemplar score");
-  add("Tmr.beta2", &o->exemplar.beta2,
-      "weight of the mean neighbour degree in the exemplar score");
-  add("Tmr.ap_damping", &o->exemplar.ap.damping,
-      "affinity propagation damping");
-  add("Tmr.msp_layers", &o->image_clustering.num_layers,
-      "layers L of the Multi-layer Shortest Path");
-  add("Tmr.min_bridge_side", &o->image_clustering.min_bridge_side,
-      "a single pair linking two groups of at least this many images never "
-      "pulls one into the other's cluster (0: the paper)");
-  add("Tmr.r", &o->leaf_clustering.r, "ideal leaf cluster size e = r * m");
-  add("Tmr.sigma1", &o->leaf_clustering.sigma1,
-      "RAC weight of the cluster distance");
-  add("Tmr.sigma2", &o->leaf_clustering.sigma2,
-      "RAC weight of the distance to the kernel");
-  add("Tmr.sigma3", &o->leaf_clustering.sigma3,
-      "RAC weight of the radial difference");
-  add("Tmr.sigma4", &o->leaf_clustering.sigma4,
-      "RAC weight of the merged size");
+void AddOptionRows(po::options_description* desc, const OptionTable& table) {
+  for (const OptionRow& row : table.rows()) {
+    std::visit(
+        [&](auto* field) {
+          AddOption(desc, row.name.c_str(), field, row.help.c_str());
+        },
+        row.value);
+  }
 }
 
 void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {

@@ -1,5 +1,6 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// Command-line options shared by the tools: --Tmr.* for TmrTreeOptions.
+// Command-line parsing shared by the tools: options from their tables
+// (tmr/util/option_table.h), --help, one error line.
 #pragma once
 
 #include <boost/program_options.hpp>
@@ -9,6 +10,7 @@
 
 #include "tmr/io/atomic_file.h"
 #include "tmr/partition/tmr_tree.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -34,9 +36,20 @@ void AddOption(boost::program_options::options_description* desc,
       name, boost::program_options::value(value)->default_value(*value), help);
 }
 
-// Registers --Tmr.<name> for every field of TmrTreeOptions, with defaults.
-void AddTmrTreeOptions(boost::program_options::options_description* desc,
-                       TmrTreeOptions* options);
+// Registers --NAME for every row, with the field's current value as its
+// default (tmr/util/option_table.h).
+void AddOptionRows(boost::program_options::options_description* desc,
+                   const OptionTable& table);
+
+// Registers every row of options->AddTo(OptionTable*): --Tmr.* for
+// TmrTreeOptions, --Mapper.* and --Tmr.* for TmrMapperOptions.
+template <typename Options>
+void AddOptionsOf(boost::program_options::options_description* desc,
+                  Options* options) {
+  OptionTable table;
+  options->AddTo(&table);
+  AddOptionRows(desc, table);
+}
 
 // Prints kernels, image clusters and leaf clusters with their sizes, the
 // unclustered images and the time per stage.

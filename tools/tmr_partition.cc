@@ -9,7 +9,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "partition_picture.h"
+#include "drawing/partition_picture.h"
 #include "tmr/io/database_reader.h"
 #include "tmr_options.h"
 
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
       "minimum inlier matches of a pair")(
       "picture", po::value(&picture)->default_value(picture),
       "draw partition.png");
-  tmr::AddTmrTreeOptions(&desc, &tree_options);
+  tmr::AddOptionsOf(&desc, &tree_options);
   po::variables_map vm;
   if (const auto exit_code =
           tmr::ParseCommandLine("tmr_partition", argc, argv, desc, &vm)) {

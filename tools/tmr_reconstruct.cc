@@ -22,34 +22,13 @@ int main(int argc, char** argv) {
   po::options_description desc(
       "tmr_reconstruct IMAGES OUT [options]: COLMAP feature extraction and "
       "matching, then tmr_mapper");
-  auto add = [&desc](const char* name, auto* value, const char* help) {
-    tmr::AddOption(&desc, name, value, help);
-  };
   desc.add_options()("help,h", "print this help")(
       "image_path", po::value(&o.image_path)->required(),
       "folder of photos (JPEG, PNG, ...), read-only")(
       "workspace_path", po::value(&o.workspace_path)->required(),
       "output: database.db, sparse/0, 1, ..., summary.txt");
-  add("verbose", &verbose, "show COLMAP's own log");
-  add("num_threads", &o.num_threads, "threads of every stage (-1: all cores)");
-  add("matcher", &o.matcher,
-      "auto | exhaustive | sequential (file-name order) | spatial (EXIF GPS)");
-  add("max_exhaustive_images", &o.max_exhaustive_images,
-      "auto: exhaustive up to this many images, sequential above");
-  add("ImageReader.camera_model", &o.camera_model, "COLMAP camera model");
-  add("ImageReader.single_camera", &o.single_camera,
-      "one camera for all photos");
-  add("FeatureExtraction.max_image_size", &o.max_image_size,
-      "photos are downscaled to this size for SIFT");
-  add("SiftExtraction.max_num_features", &o.max_num_features,
-      "SIFT features per photo");
-  add("FeatureMatching.guided_matching", &o.guided_matching,
-      "guided matching after verification");
-  add("SequentialMatching.overlap", &o.sequential_overlap,
-      "neighbours each photo is matched with (sequential)");
-  add("SpatialMatching.max_num_neighbors", &o.spatial_max_num_neighbors,
-      "GPS neighbours each photo is matched with (spatial)");
-  tmr::AddTmrMapperOptions(&desc, &o.mapper);
+  tmr::AddOption(&desc, "verbose", &verbose, "show COLMAP's own log");
+  tmr::AddOptionsOf(&desc, &o);
   po::positional_options_description positional;
   positional.add("image_path", 1).add("workspace_path", 1);
   po::variables_map vm;

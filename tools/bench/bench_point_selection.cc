@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   // longest tracks while scenes grow, and whole.
   tmr::MergedModelAdjustment longest_tracks;
   longest_tracks.longest_tracks_per_image =
-      tmr::TmrMapperOptions().merge_refine_points_per_image;
+      tmr::TmrMapperOptions().refinement.points_per_image;
   tmr::MergedModelAdjustment whole;
   whole.max_block_images = 0;
 

@@ -107,6 +107,35 @@ TmrMapperOptions ReconstructImagesOptions::MapperOptions() const {
   return o;
 }
 
+void ReconstructImagesOptions::AddTo(OptionTable* t) {
+  t->Add("num_threads", &num_threads,
+         "threads of every stage (-1: all cores)");
+  t->Add("matcher", &matcher,
+         "auto | exhaustive | sequential (file-name order) | spatial (EXIF "
+         "GPS)");
+  t->Add("max_exhaustive_images", &max_exhaustive_images,
+         "auto: exhaustive up to this many images, sequential above")
+      .AtLeast(2);
+  t->Add("ImageReader.camera_model", &camera_model, "COLMAP camera model");
+  t->Add("ImageReader.single_camera", &single_camera,
+         "one camera for all photos");
+  t->Add("FeatureExtraction.max_image_size", &max_image_size,
+         "photos are downscaled to this size for SIFT")
+      .AtLeast(16);
+  t->Add("SiftExtraction.max_num_features", &max_num_features,
+         "SIFT features per photo")
+      .AtLeast(1);
+  t->Add("FeatureMatching.guided_matching", &guided_matching,
+         "guided matching after verification");
+  t->Add("SequentialMatching.overlap", &sequential_overlap,
+         "neighbours each photo is matched with (sequential)")
+      .AtLeast(1);
+  t->Add("SpatialMatching.max_num_neighbors", &spatial_max_num_neighbors,
+         "GPS neighbours each photo is matched with (spatial)")
+      .AtLeast(1);
+  mapper.AddTo(t);
+}
+
 bool ReconstructImagesOptions::Check(std::string* error) const {
   auto fail = [error](const std::string& message) {
     if (error) *error = message;
@@ -120,21 +149,11 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
         "--matcher must be auto, exhaustive, sequential or spatial, not '" +
         matcher + "'");
   }
-  if (max_exhaustive_images < 2)
-    return fail("--max_exhaustive_images must be at least 2");
   if (!colmap::ExistsCameraModelWithName(camera_model))
     return fail("unknown camera model '" + camera_model + "'");
-  if (max_image_size < 16)
-    return fail("--FeatureExtraction.max_image_size must be at least 16");
-  if (max_num_features < 1)
-    return fail("--SiftExtraction.max_num_features must be positive");
-  if (sequential_overlap < 1)
-    return fail("--SequentialMatching.overlap must be positive");
-  if (spatial_max_num_neighbors < 1)
-    return fail("--SpatialMatching.max_num_neighbors must be positive");
   if (num_threads == 0 || num_threads < -1)
-    return fail("--num_threads must be positive or -1 (all cores)");
-  return MapperOptions().Check(error);
+    return fail("num_threads must be -1 or >= 1");
+  return CheckOptionRows(*this, error) && MapperOptions().Check(error);
 }
 
 bool RunReconstructImages(

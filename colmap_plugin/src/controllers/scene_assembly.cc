@@ -70,7 +70,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
   std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
       MergeScenes(models);
-  if (o_.complete_models) {
+  if (o_.merge.complete_models) {
     CompleteScenes(&scenes);
     // New models from what is left may overlap the others.
     if (ReconstructLeftovers(&scenes)) scenes = MergeScenes(scenes);
@@ -78,8 +78,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   RefineMergedScenes(scenes);
   // A model whose shared tracks disagreed with a scene of unrefined merges
   // (loops not yet closed) gets a second try against the refined scene
-  // (tmr_synth city of 3,752: two clusters of 234 and 222 photos fitted 31%
-  // and 41% of their shared tracks, below half of the anchor image's rate).
+  // (docs/mapper.md, step 8).
   if (scenes.size() > 1) {
     const auto held = ImagesByScene(scenes);
     const size_t before = scenes.size();
@@ -90,7 +89,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   // points that photos left out before can register on (tmr_synth plazas of
   // 960: 4 photos of a plaza whose neighbours joined by the last merges;
   // `colmap image_registrator` registered them on the final model).
-  if (o_.complete_models) {
+  if (o_.merge.complete_models) {
     const auto held = ImagesByScene(scenes);
     CompleteScenes(&scenes, /*keep_unless_grown=*/true);
     RefineLateMerges(scenes, held);
@@ -132,13 +131,11 @@ SceneAssembler::MergeScenes(
     for (const auto& model : clusters) {
       bool joined = false;
       // A model below the smallest that COLMAP keeps is too weak to move
-      // as one block (tmr_synth city block, seed 3: a model of three
-      // photos whose focal lengths came out 11-53% too long merged on 33 of
-      // 66 shared tracks, and the three ended 1,600 scene scales away).
-      // Where models are completed, its photos are registered one by one
-      // instead (CompleteScenes).
+      // as one block (docs/mapper.md, step 4: three photos with wrong focal
+      // lengths ended far away). Where models are completed, its photos are
+      // registered one by one instead (CompleteScenes).
       const bool too_small =
-          o_.complete_models && model->NumRegImages() < MinModelSize();
+          o_.merge.complete_models && model->NumRegImages() < MinModelSize();
       for (const auto& scene :
            too_small ? std::vector<std::shared_ptr<colmap::Reconstruction>>()
                      : LinkedScenes(*model, next)) {
@@ -166,7 +163,7 @@ SceneAssembler::MergeScenes(
           unrefined_.erase(model.get());
           refined_size_.erase(model.get());
           if (scene->NumRegImages() >=
-              o_.merge_refine_growth * refined_size_[scene.get()])
+              o_.refinement.growth * refined_size_[scene.get()])
             Refine(scene, /*while_merging=*/true);
           joined = merged = true;
           break;

@@ -20,9 +20,9 @@ namespace tmr {
 // Takes out of `scene` the images registered since `before` that see fewer
 // than `min_anchored` points also seen by an image of `before`: an image
 // placed mostly on points that other new images triangulated moves with
-// them, and a group of such images can settle far off (tmr_synth city of
-// 1,800: eight side-facing photos 23 degrees off). Returns how many it took
-// out; they stay in `scene`, unregistered.
+// them, and a group of such images can settle far off (docs/mapper.md,
+// step 5). Returns how many it took out; they stay in `scene`,
+// unregistered.
 int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
                            int min_anchored, colmap::Reconstruction* scene);
 
@@ -53,9 +53,9 @@ class SceneAssembler {
                  std::function<void(const TmrTaskReport&)> record);
 
   // The whole last stage: MergeScenes, CompleteScenes, ReconstructLeftovers
-  // (the last two when options.complete_models), RefineMergedScenes, then
+  // (the last two when options.merge.complete_models), RefineMergedScenes, then
   // MergeScenes once more on the refined scenes and RefineLateMerges, and
-  // (options.complete_models) CompleteScenes on the refined scenes with
+  // (options.merge.complete_models) CompleteScenes on the refined scenes with
   // RefineLateMerges of the images it added. Returns the scene models,
   // largest first.
   std::vector<std::shared_ptr<colmap::Reconstruction>> Assemble(
@@ -64,16 +64,15 @@ class SceneAssembler {
   // Each model joins the first scene it aligns with (Align), the scenes
   // tried in order of the verified matches between them and the model,
   // those without any skipped, until nothing merges; returns the scene
-  // models, largest first. With options.complete_models, a model below
+  // models, largest first. With options.merge.complete_models, a model below
   // MinModelSize stays apart: CompleteScenes registers its photos one by
   // one. A scene is refined
-  // (Refine) whenever it has grown by options.merge_refine_growth since its
+  // (Refine) whenever it has grown by options.refinement.growth since its
   // last global adjustment, as COLMAP's mapper refines a model grown by
   // 10%: parts appended one after another around a city's loops drift
   // apart, later parts then fit only in places, and one adjustment at the
-  // end starts too far off (tmr_synth city of 3,752: 51 iterations without
-  // convergence and a part 2.6 degrees off). Between those, merges add no
-  // adjustment: one per merge would cost far more.
+  // end starts too far off (docs/mapper.md, step 4). Between those, merges
+  // add no adjustment: one per merge would cost far more.
   std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
   // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
@@ -106,11 +105,10 @@ class SceneAssembler {
   // RefineMergedScenes, or the last completion (`held`: each scene's images
   // before it): a scene that this grew by less than kFullAdjustmentGrowth
   // gets an adjustment of only the images that joined, with their points
-  // (MergedModelAdjustment::only_images), a larger one a full one again.
-  // tmr_synth city of 1,800: a cluster of 86 photos joined late; the second
-  // full adjustment took 128 s, the lighter one of the refinements while
-  // merging 63 s but raised the median rotation error from 0.018 to 0.028
-  // deg, since it moves every pose.
+  // (MergedModelAdjustment::only_images), a larger one a full one again:
+  // a second full adjustment costs as much as the first, and the lighter
+  // one of the refinements while merging moves every pose (docs/mapper.md,
+  // step 8).
   void RefineLateMerges(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
       const std::unordered_map<const colmap::Reconstruction*,
@@ -125,7 +123,7 @@ class SceneAssembler {
   // The scene merge of `model` into `scene`: the shared-track rule
   // (AlignModelsBySharedTracks), and where it refuses, images of the model
   // registered on the scene's points (AlignModelsByRegisteredImages, with
-  // options.merge_register_images). On refusal the reason names both.
+  // options.merge.register_images). On refusal the reason names both.
   ModelAlignment Align(const colmap::Reconstruction& scene,
                        const colmap::Reconstruction& model) const;
 

@@ -53,13 +53,13 @@ ModelAlignment SceneAssembler::Align(
     const colmap::Reconstruction& model) const {
   const colmap::CorrespondenceGraph& graph = *cache_->CorrespondenceGraph();
   ModelAlignmentOptions tracks;
-  tracks.min_shared_tracks = o_.merge_min_shared_tracks;
+  tracks.min_shared_tracks = o_.merge.min_shared_tracks;
   tracks.seed = static_cast<unsigned>(o_.tree.seed);
   const ModelAlignment by_tracks =
       AlignModelsBySharedTracks(scene, model, graph, tracks);
-  if (by_tracks.success || o_.merge_register_images == 0) return by_tracks;
+  if (by_tracks.success || o_.merge.register_images == 0) return by_tracks;
   RegistrationAlignmentOptions registration;
-  registration.max_images = o_.merge_register_images;
+  registration.max_images = o_.merge.register_images;
   registration.min_num_inliers = o_.mapper.abs_pose_min_num_inliers;
   registration.seed = tracks.seed;
   ModelAlignment by_images =

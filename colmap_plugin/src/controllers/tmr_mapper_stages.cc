@@ -204,8 +204,8 @@ TmrTaskReport TmrMapperStages::Row(const TmrMapperTask& task,
 bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
                               TmrTaskReport* row, std::string* error) const {
   colmap::IncrementalPipelineOptions mapper = ColmapOptions(o_, num_threads);
-  mapper.ba_global_frames_ratio = o_.task_ba_global_ratio;
-  mapper.ba_global_points_ratio = o_.task_ba_global_ratio;
+  mapper.ba_global_frames_ratio = o_.task.ba_global_ratio;
+  mapper.ba_global_points_ratio = o_.task.ba_global_ratio;
   const TmrKernelNode& node = tree_.kernels.at(task.kernel);
   const std::string model = Model(task);
   std::vector<uint32_t> images;
@@ -245,16 +245,16 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     for (const uint32_t id : Ids(tree_, node.leaf_clusters.at(task.leaf)))
       images.push_back(id);
     base_model = work_.KernelModel(task.kernel);
-    mapper.fix_existing_frames = o_.fix_base_in_leaves;
+    mapper.fix_existing_frames = o_.task.fix_base_in_leaves;
   }
   const MatchConsistencyOptions kernel_check;
   bool reused = false;
   const auto result = work_.RunOrReuse(
       model, o_.database_path, images,
       [&](const std::string& db) {
-        return RunReconstructionTask(mapper, db, base_model, pairs,
-                                     o_.check_kernels ? &kernel_check : nullptr,
-                                     model);
+        return RunReconstructionTask(
+            mapper, db, base_model, pairs,
+            o_.task.check_kernels ? &kernel_check : nullptr, model);
       },
       &reused, error);
   if (!result) return false;
@@ -294,7 +294,7 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
   }
   const ClusterMerge merge = MergeLeafModels(
       work_.KernelModel(k), leaf_models, std::move(cache),
-      ColmapOptions(o_, num_threads), o_.merge_min_shared_tracks,
+      ColmapOptions(o_, num_threads), o_.merge.min_shared_tracks,
       MergedAdjustment(o_, /*while_merging=*/false));
   ReleaseFreedMemory();
   for (const auto& [i, reason] : merge.left_out) {

@@ -43,7 +43,7 @@ colmap::IncrementalPipelineOptions ColmapOptions(
   o.ba_local_max_num_iterations = m.ba_local_max_num_iterations;
   o.ba_local_max_refinements = m.ba_local_max_refinements;
   o.ba_local_function_tolerance = m.ba_local_function_tolerance;
-  o.num_threads = options.repeatable ? 1 : num_threads;
+  o.num_threads = options.task.repeatable ? 1 : num_threads;
   o.random_seed =
       static_cast<int>(options.tree.seed % std::numeric_limits<int>::max());
   return o;
@@ -85,26 +85,15 @@ uint64_t DatabaseContentHash(const std::string& path) {
   return hash;
 }
 
-std::string RunFingerprint(const TmrMapperOptions& o,
+std::string RunFingerprint(const TmrMapperOptions& options,
                            const std::string& tree_json) {
-  const MapperPassThroughOptions& m = o.mapper;
+  TmrMapperOptions copy = options;
+  OptionTable table;
+  copy.AddTo(&table);
   std::ostringstream id;
-  id.precision(17);
-  id << "database " << std::hex << DatabaseContentHash(o.database_path)
-     << std::dec << "\nmapper " << m.min_num_matches << " "
-     << m.ignore_watermarks << " " << m.init_min_num_inliers << " "
-     << m.min_model_size << " " << m.abs_pose_min_num_inliers << " "
-     << m.filter_max_reproj_error << " " << m.tri_min_angle << " "
-     << m.ba_refine_focal_length << " " << m.ba_refine_principal_point << " "
-     << m.ba_refine_extra_params << " " << m.ba_global_max_num_iterations << " "
-     << m.init_max_forward_motion << " " << m.init_min_tri_angle << " "
-     << m.filter_min_tri_angle << " " << m.ba_global_max_refinements << " "
-     << m.ba_global_function_tolerance << " " << m.ba_local_num_images << " "
-     << m.ba_local_max_num_iterations << " " << m.ba_local_max_refinements
-     << " " << m.ba_local_function_tolerance << "\ntasks "
-     << o.fix_base_in_leaves << " " << o.task_ba_global_ratio << " "
-     << o.check_kernels << " " << o.repeatable << "\n"
-     << tree_json;
+  id << "database " << std::hex << DatabaseContentHash(options.database_path)
+     << "\n"
+     << table.Values(/*tasks_only=*/true) << tree_json;
   return id.str();
 }
 
@@ -118,10 +107,10 @@ std::string ReadFileToString(const std::string& path) {
 MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
                                        bool while_merging) {
   MergedModelAdjustment adjustment;
-  adjustment.enabled = options.refine_merged_models;
-  adjustment.max_block_images = options.ba_max_block_images;
+  adjustment.enabled = options.refinement.enabled;
+  adjustment.max_block_images = options.refinement.max_block_images;
   if (while_merging)
-    adjustment.longest_tracks_per_image = options.merge_refine_points_per_image;
+    adjustment.longest_tracks_per_image = options.refinement.points_per_image;
   else
     adjustment.max_refinements = options.mapper.ba_global_max_refinements;
   return adjustment;
@@ -182,54 +171,6 @@ std::string ReportJson(const TmrMapperReport& r) {
   }
   out << "\n]}\n";
   return out.str();
-}
-
-bool TmrMapperOptions::Check(std::string* error) const {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (database_path.empty()) return fail("database_path is empty");
-  if (output_path.empty()) return fail("output_path is empty");
-  if (num_threads == 0 || num_threads < -1)
-    return fail("num_threads must be -1 or >= 1");
-  if (merge_min_shared_tracks < 3)
-    return fail("merge_min_shared_tracks must be >= 3");
-  if (merge_register_images < 0)
-    return fail("Tmr.merge_register_images must be >= 0");
-  if (!(task_ba_global_ratio > 1.0 && std::isfinite(task_ba_global_ratio)))
-    return fail("Tmr.task_ba_global_ratio must be > 1");
-  if (!(merge_refine_growth >= 1.0 && std::isfinite(merge_refine_growth)))
-    return fail("Tmr.merge_refine_growth must be >= 1");
-  if (ba_max_block_images < 0)
-    return fail("Tmr.ba_max_block_images must be >= 0");
-  if (merge_refine_points_per_image < 0)
-    return fail("Tmr.merge_refine_points_per_image must be >= 0");
-  if (mapper.min_num_matches < 1)
-    return fail("Mapper.min_num_matches must be >= 1");
-  if (mapper.min_model_size < 1)
-    return fail("Mapper.min_model_size must be >= 1");
-  if (!(mapper.init_max_forward_motion >= 0 &&
-        mapper.init_max_forward_motion <= 1))
-    return fail("Mapper.init_max_forward_motion must be in [0, 1]");
-  if (!(mapper.init_min_tri_angle >= 0 && mapper.init_min_tri_angle < 180) ||
-      !(mapper.filter_min_tri_angle >= 0 && mapper.filter_min_tri_angle < 180))
-    return fail("Mapper.*_tri_angle must be in [0, 180)");
-  if (mapper.init_min_num_inliers < 1 || mapper.abs_pose_min_num_inliers < 1 ||
-      mapper.ba_global_max_num_iterations < 1)
-    return fail("Mapper.*_min_num_inliers and iterations must be >= 1");
-  if (mapper.ba_global_max_refinements < 1 || mapper.ba_local_num_images < 2 ||
-      mapper.ba_local_max_num_iterations < 1 ||
-      mapper.ba_local_max_refinements < 1)
-    return fail(
-        "Mapper.ba_*_max_refinements and iterations must be >= 1, "
-        "ba_local_num_images >= 2");
-  if (!(mapper.ba_global_function_tolerance >= 0) ||
-      !(mapper.ba_local_function_tolerance >= 0))
-    return fail("Mapper.ba_*_function_tolerance must be >= 0");
-  if (!(mapper.filter_max_reproj_error > 0) || !(mapper.tri_min_angle > 0))
-    return fail("Mapper.filter_max_reproj_error and tri_min_angle must be > 0");
-  return match_graph.Check(error) && tree.Check(error);
 }
 
 void ConfigureColmapLogging(const char* program, bool verbose) {

@@ -17,7 +17,7 @@ namespace tmr {
 
 // COLMAP's mapper options with tmr_mapper's pass-through values, seeded
 // with options.tree.seed (COLMAP 4's random_seed), on `num_threads` threads
-// (one when options.repeatable: the same seed then gives the same models).
+// (one when options.task.repeatable: the same seed then gives the same models).
 colmap::IncrementalPipelineOptions ColmapOptions(
     const TmrMapperOptions& options, int num_threads);
 
@@ -45,7 +45,8 @@ uint64_t DatabaseContentHash(const std::string& path);
 
 // What the kernel and leaf tasks of a run depend on: the partition
 // (tree.json), the database's content (DatabaseContentHash) and the options
-// of the tasks. A rerun reuses finished tasks only when it matches.
+// that change tasks (OptionRow::changes_tasks). A rerun reuses finished
+// tasks only when it matches.
 std::string RunFingerprint(const TmrMapperOptions& options,
                            const std::string& tree_json);
 

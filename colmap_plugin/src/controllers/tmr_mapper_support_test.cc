@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
-#include <functional>
-#include <utility>
-#include <vector>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <variant>
 
 namespace tmr {
 namespace {
@@ -67,91 +69,87 @@ TEST(DatabaseContentHash, DiffersForAMissingFile) {
   EXPECT_NE(DatabaseContentHash(path.string()), written);
 }
 
+// Sets the row's field to another value.
+void ChangeValue(const OptionRow& row) {
+  std::visit(
+      [](auto* field) {
+        using T = std::decay_t<decltype(*field)>;
+        if constexpr (std::is_same_v<T, bool>)
+          *field = !*field;
+        else if constexpr (std::is_same_v<T, std::string>)
+          *field += "x";
+        else if constexpr (std::is_same_v<T, double>)
+          *field = *field * 1.5 + 0.25;
+        else
+          *field += 1;
+      },
+      row.value);
+}
+
 // Every option that reaches a kernel or leaf task must change the
 // fingerprint, or a rerun with another value reuses tasks made with the old
-// one; the options of later stages must not (a rerun reuses the tasks).
+// one; the options of later stages must not (a rerun reuses the tasks). The
+// partition's options reach it through tree.json.
 TEST(RunFingerprint, ChangesWithEveryOptionThatReachesATask) {
-  using Change = std::pair<const char*, std::function<void(TmrMapperOptions*)>>;
-  const std::vector<Change> task_changes = {
-      {"min_num_matches", [](auto* o) { o->mapper.min_num_matches++; }},
-      {"ignore_watermarks",
-       [](auto* o) {
-         o->mapper.ignore_watermarks = !o->mapper.ignore_watermarks;
-       }},
-      {"init_min_num_inliers",
-       [](auto* o) { o->mapper.init_min_num_inliers++; }},
-      {"min_model_size", [](auto* o) { o->mapper.min_model_size++; }},
-      {"init_max_forward_motion",
-       [](auto* o) { o->mapper.init_max_forward_motion /= 2; }},
-      {"init_min_tri_angle", [](auto* o) { o->mapper.init_min_tri_angle++; }},
-      {"filter_min_tri_angle",
-       [](auto* o) { o->mapper.filter_min_tri_angle++; }},
-      {"abs_pose_min_num_inliers",
-       [](auto* o) { o->mapper.abs_pose_min_num_inliers++; }},
-      {"filter_max_reproj_error",
-       [](auto* o) { o->mapper.filter_max_reproj_error++; }},
-      {"tri_min_angle", [](auto* o) { o->mapper.tri_min_angle++; }},
-      {"ba_refine_focal_length",
-       [](auto* o) {
-         o->mapper.ba_refine_focal_length = !o->mapper.ba_refine_focal_length;
-       }},
-      {"ba_refine_principal_point",
-       [](auto* o) {
-         o->mapper.ba_refine_principal_point =
-             !o->mapper.ba_refine_principal_point;
-       }},
-      {"ba_refine_extra_params",
-       [](auto* o) {
-         o->mapper.ba_refine_extra_params = !o->mapper.ba_refine_extra_params;
-       }},
-      {"ba_global_max_num_iterations",
-       [](auto* o) { o->mapper.ba_global_max_num_iterations++; }},
-      {"ba_global_max_refinements",
-       [](auto* o) { o->mapper.ba_global_max_refinements++; }},
-      {"ba_global_function_tolerance",
-       [](auto* o) { o->mapper.ba_global_function_tolerance = 1e-6; }},
-      {"ba_local_num_images", [](auto* o) { o->mapper.ba_local_num_images++; }},
-      {"ba_local_max_num_iterations",
-       [](auto* o) { o->mapper.ba_local_max_num_iterations++; }},
-      {"ba_local_max_refinements",
-       [](auto* o) { o->mapper.ba_local_max_refinements++; }},
-      {"ba_local_function_tolerance",
-       [](auto* o) { o->mapper.ba_local_function_tolerance = 1e-6; }},
-      {"repeatable", [](auto* o) { o->repeatable = !o->repeatable; }},
-      {"fix_base_in_leaves",
-       [](auto* o) { o->fix_base_in_leaves = !o->fix_base_in_leaves; }},
-      {"task_ba_global_ratio", [](auto* o) { o->task_ba_global_ratio++; }},
-      {"check_kernels", [](auto* o) { o->check_kernels = !o->check_kernels; }},
-      {"database_path", [](auto* o) { o->database_path = "/nonexistent"; }},
-  };
-  const std::vector<Change> later_changes = {
-      {"num_threads", [](auto* o) { o->num_threads = 7; }},
-      {"output_path", [](auto* o) { o->output_path = "elsewhere"; }},
-      {"merge_min_shared_tracks",
-       [](auto* o) { o->merge_min_shared_tracks++; }},
-      {"refine_merged_models",
-       [](auto* o) { o->refine_merged_models = !o->refine_merged_models; }},
-      {"complete_models",
-       [](auto* o) { o->complete_models = !o->complete_models; }},
-      {"keep_work", [](auto* o) { o->keep_work = !o->keep_work; }},
-  };
   const fs::path path = WriteTwoImageDatabase();
   TmrMapperOptions defaults;
   defaults.database_path = path.string();
   const std::string tree_json = "{}";
   const std::string base = RunFingerprint(defaults, tree_json);
-  EXPECT_NE(RunFingerprint(defaults, "{\"seed\": 1}"), base);
-  for (const auto& [name, change] : task_changes) {
+  EXPECT_NE(RunFingerprint(defaults, "{\"Tmr.seed\": 1}"), base);
+  TmrMapperOptions other_database = defaults;
+  other_database.database_path = "/nonexistent";
+  EXPECT_NE(RunFingerprint(other_database, tree_json), base);
+
+  OptionTable rows;
+  defaults.AddTo(&rows);
+  int num_task_rows = 0;
+  for (size_t i = 0; i < rows.rows().size(); ++i) {
     TmrMapperOptions options = defaults;
-    change(&options);
-    EXPECT_NE(RunFingerprint(options, tree_json), base) << name;
+    OptionTable table;
+    options.AddTo(&table);
+    const OptionRow& row = table.rows()[i];
+    ChangeValue(row);
+    if (row.changes_tasks) {
+      ++num_task_rows;
+      EXPECT_NE(RunFingerprint(options, tree_json), base) << row.name;
+    } else {
+      EXPECT_EQ(RunFingerprint(options, tree_json), base) << row.name;
+    }
+    // The mapper's options and these four reach the tasks.
+    const bool reaches_tasks = (row.name.rfind("Mapper.", 0) == 0 &&
+                                row.name != "Mapper.num_threads") ||
+                               row.name == "Tmr.repeatable" ||
+                               row.name == "Tmr.fix_base_in_leaves" ||
+                               row.name == "Tmr.task_ba_global_ratio" ||
+                               row.name == "Tmr.check_kernels";
+    EXPECT_EQ(row.changes_tasks, reaches_tasks) << row.name;
   }
-  for (const auto& [name, change] : later_changes) {
-    TmrMapperOptions options = defaults;
-    change(&options);
-    EXPECT_EQ(RunFingerprint(options, tree_json), base) << name;
-  }
+  EXPECT_EQ(num_task_rows, 24);
   fs::remove(path);
+}
+
+// Every row's default is allowed, and the names are unique.
+TEST(TmrMapperOptions, DefaultsPassTheirRowsAndNamesAreUnique) {
+  TmrMapperOptions options;
+  options.database_path = "db";
+  options.output_path = "out";
+  std::string error;
+  EXPECT_TRUE(options.Check(&error)) << error;
+  OptionTable table;
+  options.AddTo(&table);
+  std::set<std::string> names;
+  for (const OptionRow& row : table.rows())
+    EXPECT_TRUE(names.insert(row.name).second) << row.name;
+  EXPECT_GT(table.rows().size(), 50u);
+
+  options.tree.kernels.alpha = 0.5;
+  EXPECT_FALSE(options.Check(&error));
+  EXPECT_EQ(error, "Tmr.alpha must be >= 1");
+  options.tree.kernels.alpha = 1.5;
+  options.mapper.init_max_forward_motion = std::nan("");
+  EXPECT_FALSE(options.Check(&error));
+  EXPECT_EQ(error, "Mapper.init_max_forward_motion must be in [0, 1]");
 }
 
 }  // namespace

@@ -262,10 +262,8 @@ std::string AdjustOnLongestTracks(
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model) {
-  // Long tracks tie the model together. On a 553-image tmr_synth city with
-  // a misaligned half, the median rotation error after the whole adjustment
-  // was 0.0151 deg; with 250 / 500 / 1,000 points per image (28% / 46% /
-  // ~65% of the observations in step 1): 0.0215 / 0.0175 / 0.0160 deg.
+  // Long tracks tie the model together; 500 per image came within 0.003
+  // deg of the whole adjustment (docs/benchmarks.md, "Session 8").
   constexpr size_t kGlobalPointsPerImage = 500;
   std::ostringstream report;
   report << AdjustOnLongestTracks(options, kGlobalPointsPerImage, model);

@@ -72,9 +72,8 @@ std::string AdjustOnLongestTracks(
 // pass over blocks of at most max_block_images (CovisibleImageBlocks), each
 // adjusted with all its points (AdjustBlock), which fits the points left
 // out of step 1 and the fine detail. Block passes alone converge slowly on
-// the large-scale shape: two passes (no step 1) left a 3,749-image city at
-// 0.051 deg median rotation error where the whole adjustment reached 0.020.
-// Returns a one-line report.
+// the large-scale shape (docs/benchmarks.md, "Session 8"). Returns a
+// one-line report.
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model);

@@ -15,10 +15,8 @@ namespace tmr {
 // verification threshold (the model's relative pose satisfies the epipolar
 // constraint they were verified with); where the mapper settled a group of
 // photos in a wrong place, or traded focal length against depth, many do
-// not. On a 3,752-image tmr_synth city, COLMAP's mapper placed 27 of one
-// kernel's 70 photos 12% of the scale off: 1.7% of that kernel's verified
-// matches and 26 of its pairs were inconsistent; a correct kernel of the
-// same city had none. Image ids of `model` must be those of `database`.
+// not (figures: docs/mapper.md, step 3). Image ids of `model`
+// must be those of `database`.
 MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
                                        const colmap::Database& database,
                                        const MatchConsistencyOptions& options);

@@ -303,9 +303,8 @@ std::string RefineMergedModel(
   mapper.Retriangulate(triangulation);
   std::string report;
   size_t filtered = 0;
-  // A model adjusted by blocks gets one round: repeated block passes moved
-  // the city block of the test (blocks of at most 60 images) from 0.030 to
-  // 0.090 deg median rotation error.
+  // A model adjusted by blocks gets one round: repeated block passes made
+  // it three times less accurate (docs/mapper.md, step 7).
   const bool by_blocks = adjustment.max_block_images > 0 &&
                          model->NumRegImages() > adjustment.max_block_images;
   const int rounds = adjustment.enabled && !by_blocks &&

@@ -121,19 +121,17 @@ struct MergedModelAdjustment {
   // observations changed (COLMAP's IterativeGlobalRefinement, which ends
   // every run of its mapper with Mapper.ba_global_max_refinements = 5 and
   // 0.0005). A single adjustment of a freshly merged model stops on a
-  // re-linked track set built from its unadjusted poses: on a 192-image
-  // tmr_synth city block (seed 1) one round left a median rotation error
-  // of 0.099 deg, two rounds 0.044. Only a model adjusted whole gets more
-  // than one round (not by blocks, longest tracks or only_images).
+  // re-linked track set built from its unadjusted poses (figures:
+  // docs/mapper.md, step 7). Only a model adjusted whole gets more than one
+  // round (not by blocks, longest tracks or only_images).
   int max_refinements = 1;
   double max_refinement_change = 0.0005;
   // With rounds as above: when the last round's track merging and
   // filtering changed anything, the model is adjusted once more (then
   // filtered, not re-linked), so that the model written was adjusted after
   // its last change. COLMAP's refinement stops with that change
-  // unadjusted: on plazas8 (948 images) that left 0.206 deg median
-  // rotation error, one more adjustment of the written model 0.078 deg
-  // (stock: 0.069).
+  // unadjusted, which left a merged scene three times less accurate
+  // (docs/mapper.md, step 7).
   bool adjust_after_last_change = false;
 };
 
@@ -141,14 +139,13 @@ struct MergedModelAdjustment {
 // loss and gauge (IncrementalMapper::AdjustGlobalBundle), but a direct
 // sparse Schur solver at every size and Ceres' convergence test
 // (AdjustWholeModel). COLMAP switches to an iterative solver above
-// 1,000 images and runs its global adjustments to the iteration limit; on a
-// merged 1,087-image city that took 648 s and left a median rotation error
-// of 0.039 deg against the stock mapper's 0.017. A model of more than
-// adjustment.max_block_images is adjusted in two smaller problems
-// (AdjustByBlocks: every pose on the longest tracks, then blocks of at most
-// that many images), since memory is the problem's, not the solver's (on a
-// 3,749-image model both solvers held 9.7 GB). Returns the solver's name
-// and Ceres' one-line report, empty when there was nothing to adjust.
+// 1,000 images and runs its global adjustments to the iteration limit,
+// which on merged models took ten times as long for twice the error. A
+// model of more than adjustment.max_block_images is adjusted in two
+// smaller problems (AdjustByBlocks: every pose on the longest tracks, then
+// blocks of at most that many images), since memory is the problem's, not
+// the solver's (figures: docs/mapper.md, step 7). Returns the solver's
+// name and Ceres' one-line report, empty when there was nothing to adjust.
 std::string AdjustMergedBundle(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper);

@@ -177,12 +177,12 @@ std::string DescribeConsistency(const MatchConsistency& c) {
 
 // A kernel model that its own verified matches contradict
 // (CheckMatchConsistency) is mapped again: first from the same initial pair
-// with the intrinsics held at their priors (where COLMAP's mapper went wrong
-// on a 3,752-image city, it had traded focal length against depth from the
-// initial pair on: focal lengths at 0.55x their priors), then from each
-// other candidate pair. A redo replaces the model when it contradicts fewer
-// matches and registers at least 90% as many images; the first consistent
-// one ends the search. Appends what happened to `how`.
+// with the intrinsics held at their priors (where COLMAP's mapper went
+// wrong, it had traded focal length against depth from the initial pair on:
+// docs/mapper.md, step 3), then from each other candidate pair. A redo replaces
+// the model when it contradicts fewer matches and registers at least 90% as
+// many images; the first consistent one ends the search. Appends what happened
+// to `how`.
 void RedoIfInconsistent(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database,
@@ -275,8 +275,7 @@ ReconstructionTaskResult RunReconstructionTask(
   }
   // A kernel's model is its largest. COLMAP keeps the first model of a run
   // whatever its size, so a seeded model can stall at a few images where
-  // the rest then gives one of most of the kernel (plazas8, kernel 5: 2
-  // images from the exemplar, 80 from the rest).
+  // the rest then gives one of most of the kernel (docs/mapper.md, step 3).
   if (best && base_model.empty() && !parts.empty() &&
       parts.front()->NumRegImages() > best->NumRegImages()) {
     how += "; stalled at " + std::to_string(best->NumRegImages()) +

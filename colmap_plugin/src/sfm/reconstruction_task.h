@@ -57,8 +57,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // kernel only through other leaf images cannot be registered when those
 // see no point of the base in common (a registered image needs points that
 // two registered images see): the images it leaves are reconstructed on
-// their own as for a kernel (tmr_synth city of 1,800: 68 of a leaf's 70
-// images).
+// their own as for a kernel (docs/benchmarks.md, "What fixed city4").
 ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,

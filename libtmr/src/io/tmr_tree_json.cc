@@ -6,8 +6,10 @@
 #include <stdexcept>
 #include <type_traits>
 #include <unordered_map>
+#include <variant>
 
 #include "tmr/partition/tmr_tree.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 namespace {
@@ -29,34 +31,16 @@ json Names(const TmrTree& tree, const std::vector<int>& images) {
   return names;
 }
 
-json Parameters(const TmrTreeOptions& o) {
-  return {{"seed", o.seed},
-          {"kernels",
-           {{"max_kernel_size", o.kernels.max_kernel_size},
-            {"kernel_fraction", o.kernels.kernel_fraction},
-            {"alpha", o.kernels.alpha},
-            {"num_layers", o.kernels.num_layers},
-            {"epsilon", o.kernels.epsilon},
-            {"min_kernel_size", o.kernels.min_kernel_size},
-            {"kernel_size_floor", o.kernels.kernel_size_floor},
-            {"per_place", o.kernels.per_place},
-            {"place_core_neighbors", o.kernels.place_core_neighbors},
-            {"max_recursion_depth", o.kernels.max_recursion_depth}}},
-          {"exemplar",
-           {{"beta1", o.exemplar.beta1},
-            {"beta2", o.exemplar.beta2},
-            {"ap_damping", o.exemplar.ap.damping},
-            {"ap_max_iterations", o.exemplar.ap.max_iterations},
-            {"ap_convergence_iterations", o.exemplar.ap.convergence_iterations},
-            {"num_second_images", o.exemplar.num_second_images}}},
-          {"image_clustering",
-           {{"num_layers", o.image_clustering.num_layers},
-            {"min_bridge_side", o.image_clustering.min_bridge_side}}},
-          {"leaf_clustering",
-           {{"r", o.leaf_clustering.r},
-            {"sigma",
-             {o.leaf_clustering.sigma1, o.leaf_clustering.sigma2,
-              o.leaf_clustering.sigma3, o.leaf_clustering.sigma4}}}}};
+// Every row of TmrTreeOptions::AddTo, by its name.
+json Parameters(TmrTreeOptions options) {
+  OptionTable table;
+  options.AddTo(&table);
+  json parameters = json::object();
+  for (const OptionRow& row : table.rows()) {
+    std::visit([&](const auto* field) { parameters[row.name] = *field; },
+               row.value);
+  }
+  return parameters;
 }
 
 // Reads an optional value of the expected type. An integer must be a whole
@@ -82,48 +66,15 @@ void Get(const json& object, const char* key, T* value) {
   *value = v.get<T>();
 }
 
+// The rows that `p` names; the others keep their defaults (a tree.json of
+// version 1 had nested parameters: they all stay at their defaults).
 TmrTreeOptions ParametersFromJson(const json& p) {
   TmrTreeOptions o;
-  Get(p, "seed", &o.seed);
-  if (p.contains("kernels")) {
-    const json& k = p.at("kernels");
-    Get(k, "max_kernel_size", &o.kernels.max_kernel_size);
-    Get(k, "kernel_fraction", &o.kernels.kernel_fraction);
-    Get(k, "alpha", &o.kernels.alpha);
-    Get(k, "num_layers", &o.kernels.num_layers);
-    Get(k, "epsilon", &o.kernels.epsilon);
-    Get(k, "min_kernel_size", &o.kernels.min_kernel_size);
-    Get(k, "kernel_size_floor", &o.kernels.kernel_size_floor);
-    Get(k, "per_place", &o.kernels.per_place);
-    Get(k, "place_core_neighbors", &o.kernels.place_core_neighbors);
-    Get(k, "max_recursion_depth", &o.kernels.max_recursion_depth);
-  }
-  if (p.contains("exemplar")) {
-    const json& e = p.at("exemplar");
-    Get(e, "beta1", &o.exemplar.beta1);
-    Get(e, "beta2", &o.exemplar.beta2);
-    Get(e, "ap_damping", &o.exemplar.ap.damping);
-    Get(e, "ap_max_iterations", &o.exemplar.ap.max_iterations);
-    Get(e, "ap_convergence_iterations", &o.exemplar.ap.convergence_iterations);
-    Get(e, "num_second_images", &o.exemplar.num_second_images);
-  }
-  if (p.contains("image_clustering")) {
-    Get(p.at("image_clustering"), "num_layers", &o.image_clustering.num_layers);
-    Get(p.at("image_clustering"), "min_bridge_side",
-        &o.image_clustering.min_bridge_side);
-  }
-  if (p.contains("leaf_clustering")) {
-    const json& l = p.at("leaf_clustering");
-    Get(l, "r", &o.leaf_clustering.r);
-    if (l.contains("sigma")) {
-      const auto sigma = l.at("sigma").get<std::vector<double>>();
-      if (sigma.size() != 4)
-        throw std::runtime_error("leaf_clustering.sigma needs 4 values");
-      o.leaf_clustering.sigma1 = sigma[0];
-      o.leaf_clustering.sigma2 = sigma[1];
-      o.leaf_clustering.sigma3 = sigma[2];
-      o.leaf_clustering.sigma4 = sigma[3];
-    }
+  OptionTable table;
+  o.AddTo(&table);
+  for (const OptionRow& row : table.rows()) {
+    std::visit([&](auto* field) { Get(p, row.name.c_str(), field); },
+               row.value);
   }
   o.exemplar.ap.seed = o.seed;
   return o;
@@ -151,7 +102,7 @@ void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
                        {"leaf_clusters", std::move(leaf_clusters)}});
   }
   const json root = {{"format", "tmr-tree"},
-                     {"version", 1},
+                     {"version", 2},
                      {"num_images", tree.image_names.size()},
                      {"kernel_size", tree.kernel_size},
                      {"kernels", std::move(kernels)},

@@ -8,6 +8,8 @@
 #include <tuple>
 #include <utility>
 
+#include "scene/union_find.h"
+
 namespace tmr {
 namespace {
 
@@ -48,12 +50,11 @@ class GroupTree {
  public:
   GroupTree(const ImageGraph& s, const DensePlaceOptions& o)
       : min_size_(o.min_place_size),
-        root_(s.NumVertices()),
+        components_(s.NumVertices()),
         component_group_(s.NumVertices(), -1),
         members_(s.NumVertices()),
         first_group_(s.NumVertices(), -1),
         leave_level_(s.NumVertices(), 0.0) {
-    std::iota(root_.begin(), root_.end(), 0);
     for (int v = 0; v < s.NumVertices(); ++v) members_[v] = {v};
     const std::vector<double> core = CoreSimilarities(s, o.core_neighbors);
     std::vector<WeightedEdge> edges = s.Edges();
@@ -72,11 +73,6 @@ class GroupTree {
   double LeaveLevel(int v) const { return leave_level_[v]; }
 
  private:
-  int Find(int v) {
-    while (root_[v] != v) v = root_[v] = root_[root_[v]];
-    return v;
-  }
-
   // Images of a component below min_size that join group g at `level`.
   void Enter(std::vector<int>* images, int g, double level) {
     for (const int v : *images) {
@@ -90,12 +86,12 @@ class GroupTree {
   }
 
   void Join(int u, int v, double level) {
-    int a = Find(u), b = Find(v);
+    int a = components_.Find(u), b = components_.Find(v);
     if (a == b) return;
     int ga = component_group_[a], gb = component_group_[b];
     if (ga < 0 && gb >= 0) std::swap(a, b), std::swap(ga, gb);
     // a now holds the group, if either has one.
-    root_[b] = a;
+    components_.Link(b, a);
     if (ga < 0) {  // two small components
       members_[a].insert(members_[a].end(), members_[b].begin(),
                          members_[b].end());
@@ -126,7 +122,7 @@ class GroupTree {
   }
 
   const int min_size_;
-  std::vector<int> root_;
+  UnionFind components_;
   std::vector<int> component_group_;       // by union-find root
   std::vector<std::vector<int>> members_;  // of components without a group
   std::vector<int> first_group_;

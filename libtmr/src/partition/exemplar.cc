@@ -9,28 +9,37 @@
 
 namespace tmr {
 
+void AffinityPropagationOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.ap_damping", &damping, "affinity propagation damping")
+      .AtLeast(0.5)
+      .Below(1);
+  t->Add("Tmr.ap_max_iterations", &max_iterations,
+         "affinity propagation: most iterations")
+      .AtLeast(1);
+  t->Add("Tmr.ap_convergence_iterations", &convergence_iterations,
+         "affinity propagation: iterations without change that end it")
+      .AtLeast(1);
+}
+
 bool AffinityPropagationOptions::Check(std::string* error) const {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (!(damping >= 0.5 && damping < 1))
-    return fail("damping must be in [0.5, 1)");
-  if (max_iterations < 1 || convergence_iterations < 1) {
-    return fail("iteration counts must be >= 1");
-  }
-  return true;
+  return CheckOptionRows(*this, error);
+}
+
+void ExemplarOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.beta1", &beta1,
+         "weight of the mean similarity in the exemplar score")
+      .AtLeast(0);
+  t->Add("Tmr.beta2", &beta2,
+         "weight of the mean neighbour degree in the exemplar score")
+      .AtLeast(0);
+  t->Add("Tmr.num_second_images", &num_second_images,
+         "second initial images kept as fall-backs")
+      .AtLeast(1);
+  ap.AddTo(t);
 }
 
 bool ExemplarOptions::Check(std::string* error) const {
-  if (!ap.Check(error)) return false;
-  if (!(beta1 >= 0 && std::isfinite(beta1)) ||
-      !(beta2 >= 0 && std::isfinite(beta2)) || num_second_images < 1) {
-    if (error)
-      *error = "beta1, beta2 must be finite and >= 0, num_second_images >= 1";
-    return false;
-  }
-  return true;
+  return CheckOptionRows(*this, error);
 }
 
 std::vector<int> AffinityPropagation(

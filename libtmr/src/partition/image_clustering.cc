@@ -63,14 +63,18 @@ CsrGraph ToCsrWithoutBridges(const ImageGraph& graph, int min_side,
 
 }  // namespace
 
+void MultiLayerShortestPathOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.msp_layers", &num_layers,
+         "layers L of the Multi-layer Shortest Path")
+      .AtLeast(1);
+  t->Add("Tmr.min_bridge_side", &min_bridge_side,
+         "a single pair linking two groups of at least this many images never "
+         "pulls one into the other's cluster (0: the paper)")
+      .AtLeast(0);
+}
+
 bool MultiLayerShortestPathOptions::Check(std::string* error) const {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (num_layers < 1) return fail("num_layers must be >= 1");
-  if (min_bridge_side < 0) return fail("min_bridge_side must be >= 0");
-  return true;
+  return CheckOptionRows(*this, error);
 }
 
 ImageClusters AssignByMultiLayerShortestPath(

@@ -9,28 +9,11 @@
 #include <stdexcept>
 #include <utility>
 
+#include "scene/union_find.h"
 #include "tmr/partition/dense_places.h"
 
 namespace tmr {
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int Find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void Union(int a, int b) {
-    a = Find(a), b = Find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 class KernelSearch {
  public:
@@ -270,30 +253,53 @@ const char* KernelOriginName(KernelOrigin origin) {
   return "layer";
 }
 
+void KernelOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.max_kernel_size", &max_kernel_size,
+         "m = min(this, kernel_fraction * images)")
+      .AtLeast(2);
+  t->Add("Tmr.kernel_fraction", &kernel_fraction,
+         "kernel size as a share of the images")
+      .Above(0)
+      .AtMost(1);
+  t->Add("Tmr.alpha", &alpha, "kernels hold m to alpha * m images").AtLeast(1);
+  t->Add("Tmr.kernel_layers", &num_layers, "layers k of the kernel search")
+      .AtLeast(1);
+  t->Add("Tmr.epsilon", &epsilon, "a = min(s) + epsilon").AtLeast(0);
+  t->Add("Tmr.min_kernel_size", &min_kernel_size, "smallest kernel").AtLeast(2);
+  t->Add("Tmr.kernel_size_floor", &kernel_size_floor,
+         "m, and every dense place, is at least this (the paper: 3)")
+      .AtLeast(2);
+  t->Add("Tmr.kernels_per_place", &per_place,
+         "search kernels per dense place (0: the paper's layers on the whole "
+         "graph)");
+  t->Add("Tmr.place_core_neighbors", &place_core_neighbors,
+         "an image's density is its this-th strongest pair (dense places)")
+      .AtLeast(1);
+  t->Add("Tmr.max_recursion_depth", &max_recursion_depth,
+         "recursion into oversized components before they are carved")
+      .AtLeast(0);
+}
+
 bool KernelOptions::Check(std::string* error) const {
-  auto fail = [&](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (max_kernel_size < 2) return fail("max_kernel_size must be >= 2");
-  // Written so that NaN fails every test.
-  if (!(kernel_fraction > 0 && kernel_fraction <= 1))
-    return fail("kernel_fraction must be in (0, 1]");
-  if (!(alpha >= 1 && std::isfinite(alpha)))
-    return fail("alpha must be >= 1 and finite");
-  if (num_layers < 1) return fail("num_layers must be >= 1");
-  if (!(epsilon >= 0 && std::isfinite(epsilon)))
-    return fail("epsilon must be >= 0 and finite");
-  if (min_kernel_size < 2 || min_kernel_size > max_kernel_size) {
-    return fail("min_kernel_size must be in [2, max_kernel_size]");
-  }
-  if (max_recursion_depth < 0) return fail("max_recursion_depth must be >= 0");
-  if (place_core_neighbors < 1)
-    return fail("place_core_neighbors must be >= 1");
-  if (kernel_size_floor < 2 || kernel_size_floor > max_kernel_size) {
-    return fail("kernel_size_floor must be in [2, max_kernel_size]");
+  if (!CheckOptionRows(*this, error)) return false;
+  for (const int size : {min_kernel_size, kernel_size_floor}) {
+    if (size > max_kernel_size) {
+      if (error) {
+        *error =
+            "Tmr.min_kernel_size and Tmr.kernel_size_floor must be at "
+            "most Tmr.max_kernel_size";
+      }
+      return false;
+    }
   }
   return true;
+}
+
+DensePlaceOptions KernelOptions::PlaceOptions() const {
+  DensePlaceOptions places;
+  places.min_place_size = std::max(min_kernel_size, kernel_size_floor);
+  places.core_neighbors = place_core_neighbors;
+  return places;
 }
 
 int KernelOptions::KernelSize(int num_images) const {
@@ -309,11 +315,8 @@ std::vector<Kernel> FindKernels(const ImageGraph& similarity,
     throw std::invalid_argument("KernelOptions: " + error);
   KernelSearch search(similarity, options);
   if (similarity.NumEdges() > 0 && options.per_place) {
-    DensePlaceOptions places;
-    places.min_place_size =
-        std::max(options.min_kernel_size, options.kernel_size_floor);
-    places.core_neighbors = options.place_core_neighbors;
-    for (const DensePlace& place : FindDensePlaces(similarity, places))
+    for (const DensePlace& place :
+         FindDensePlaces(similarity, options.PlaceOptions()))
       search.SearchPlace(place.images);
   } else if (similarity.NumEdges() > 0) {
     const double b = similarity.MaxWeight();

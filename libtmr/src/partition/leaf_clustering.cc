@@ -269,17 +269,19 @@ class RadialAgglomeration {
 
 }  // namespace
 
+void RadialAgglomerateOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.r", &r, "ideal leaf cluster size e = r * m").Above(0);
+  t->Add("Tmr.sigma1", &sigma1, "RAC weight of the cluster distance")
+      .AtLeast(0);
+  t->Add("Tmr.sigma2", &sigma2, "RAC weight of the distance to the kernel")
+      .AtLeast(0);
+  t->Add("Tmr.sigma3", &sigma3, "RAC weight of the radial difference")
+      .AtLeast(0);
+  t->Add("Tmr.sigma4", &sigma4, "RAC weight of the merged size").AtLeast(0);
+}
+
 bool RadialAgglomerateOptions::Check(std::string* error) const {
-  const auto finite_at_least = [](double x, double low) {
-    return x >= low && std::isfinite(x);  // false for NaN
-  };
-  if (!(r > 0 && std::isfinite(r)) || !finite_at_least(sigma1, 0) ||
-      !finite_at_least(sigma2, 0) || !finite_at_least(sigma3, 0) ||
-      !finite_at_least(sigma4, 0)) {
-    if (error) *error = "r must be > 0 and the sigmas >= 0, all finite";
-    return false;
-  }
-  return true;
+  return CheckOptionRows(*this, error);
 }
 
 std::vector<std::vector<int>> RadialAgglomerateClustering(

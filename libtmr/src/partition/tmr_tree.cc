@@ -21,6 +21,14 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+void TmrTreeOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.seed", &seed, "seed of every random choice");
+  kernels.AddTo(t);
+  exemplar.AddTo(t);
+  image_clustering.AddTo(t);
+  leaf_clustering.AddTo(t);
+}
+
 bool TmrTreeOptions::Check(std::string* error) const {
   return kernels.Check(error) && exemplar.Check(error) &&
          image_clustering.Check(error) && leaf_clustering.Check(error);

@@ -102,7 +102,7 @@ TEST(TmrTree, MalformedJsonIsAClearError) {
         "\"unclustered\": []}",
         "{\"format\": \"tmr-tree\", \"kernel_size\": 2.5, \"kernels\": [], "
         "\"unclustered\": []}",
-        "{\"format\": \"tmr-tree\", \"parameters\": {\"seed\": -1}, "
+        "{\"format\": \"tmr-tree\", \"parameters\": {\"Tmr.seed\": -1}, "
         "\"kernels\": [], \"unclustered\": []}"}) {
     std::istringstream in(text);
     EXPECT_THROW(ReadTmrTreeJson(in, {"a", "b"}), std::runtime_error) << text;

@@ -19,17 +19,17 @@ struct ReconstructImagesOptions {
   // "exhaustive", "sequential" (photos in file-name order, as from a video
   // or a walk), "spatial" (by EXIF GPS) or "auto": exhaustive up to
   // max_exhaustive_images photos, sequential above.
-  std::string matcher = "auto";
-  int max_exhaustive_images = 500;
+  std::string matcher = "auto";                // --matcher
+  int max_exhaustive_images = 500;             // --max_exhaustive_images
   std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
   bool single_camera = false;                  // --ImageReader.single_camera
-  int max_image_size = 3200;           // --SiftExtraction.max_image_size
+  int max_image_size = 3200;           // --FeatureExtraction.max_image_size
   int max_num_features = 8192;         // --SiftExtraction.max_num_features
-  bool guided_matching = false;        // --SiftMatching.guided_matching
+  bool guided_matching = false;        // --FeatureMatching.guided_matching
   int sequential_overlap = 10;         // --SequentialMatching.overlap
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
   // Threads of every stage (-1: all cores); mapper.num_threads follows it.
-  int num_threads = -1;
+  int num_threads = -1;  // --num_threads
   // database_path, output_path, image_path and num_threads are set by the
   // run (MapperOptions).
   TmrMapperOptions mapper;
@@ -38,6 +38,8 @@ struct ReconstructImagesOptions {
   // workspace_path/sparse out, colours from image_path, num_threads.
   TmrMapperOptions MapperOptions() const;
 
+  // Lists the options above and mapper's as rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 

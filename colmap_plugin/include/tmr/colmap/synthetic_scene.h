@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tmr/util/option_table.h"
+
 namespace tmr {
 
 // Options of the synthetic scene generator (tools/tmr_synth). A scene is a
@@ -129,6 +131,9 @@ struct SyntheticSceneOptions {
   // each between two images that share no point, with 15 to 40 inliers.
   double false_pairs_per_100_images = 1.0;
 
+  // Lists the options as rows (tmr/util/option_table.h): tmr_synth's
+  // command line reads them.
+  void AddTo(OptionTable* table);
   // Returns false (and fills `error`) for impossible values.
   bool Check(std::string* error = nullptr) const;
   // Cameras of each linked place (place_cameras, else num_places times

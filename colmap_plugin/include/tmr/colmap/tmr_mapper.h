@@ -7,6 +7,7 @@
 
 #include "tmr/io/database_reader.h"
 #include "tmr/partition/tmr_tree.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -41,14 +42,15 @@ struct MapperPassThroughOptions {
   int ba_local_max_num_iterations = 25;
   int ba_local_max_refinements = 2;
   double ba_local_function_tolerance = 0.0;
+
+  // Lists the options as --Mapper.* rows (tmr/util/option_table.h); every
+  // one changes the tasks.
+  void AddTo(OptionTable* table);
 };
 
-struct TmrMapperOptions {
-  std::string database_path;  // read-only
-  std::string image_path;     // optional: colours are skipped when empty
-  std::string output_path;    // models 0, 1, ... plus tree.json and report
-  // Worker threads (-1: all cores); this many tasks run at once.
-  int num_threads = -1;
+// What a kernel or leaf task reads besides COLMAP's mapper options; every
+// option here changes the tasks (a resumed run redoes them).
+struct TmrTaskOptions {
   // Run each COLMAP step (bundle adjustment, structure-less RANSAC) on one
   // thread; tasks still run side by side on num_threads workers. The same
   // database, options and tree.seed then give byte-identical models in
@@ -56,60 +58,90 @@ struct TmrMapperOptions {
   // COLMAP's parallel RANSAC sum and draw in an order that varies between
   // runs (COLMAP's own repeatability tests use one thread), and a task's
   // share of the threads depends on how many others run beside it.
-  bool repeatable = true;
+  bool repeatable = true;  // --Tmr.repeatable
   // Keep the kernel's poses fixed when leaf clusters extend it.
-  bool fix_base_in_leaves = true;
-  // tau of the merge rule (paper Sec. 5).
-  int merge_min_shared_tracks = 12;
-  // A model that shares too few tracks with a scene for that rule is
-  // aligned by registering up to this many of its images on the scene's
-  // points (AlignModelsByRegisteredImages); 0: the track rule only.
-  int merge_register_images = 10;
-  // Growth of a kernel or leaf task's model between two of COLMAP's global
-  // adjustments (its ba_global_images_ratio and ba_global_points_ratio,
-  // 1.1 in COLMAP). Every merged model gets a full global adjustment, so the
-  // tasks can afford fewer: 1.3 cut a 78-image kernel's time by a third
-  // with the same poses; 2 cuts another 15-30% (city4 kernels 1,294 ->
-  // 917 s) and, since the final refinement runs in rounds, gives the same
-  // city blocks as 1.3 (five seeds, within 0.001 deg).
-  double task_ba_global_ratio = 2.0;
+  bool fix_base_in_leaves = true;  // --Tmr.fix_base_in_leaves
+  // Growth of a task's model between two of COLMAP's global adjustments
+  // (its ba_global_images_ratio and ba_global_points_ratio, 1.1 in COLMAP).
+  // Every merged model gets a full global adjustment, so the tasks can
+  // afford fewer (figures: docs/benchmarks.md, "Mapper (issue 5)").
+  double ba_global_ratio = 2.0;  // --Tmr.task_ba_global_ratio
   // Check every kernel model against its verified matches (triangulated
   // with the model's poses, those no common track holds must reproject
   // within 4 px) and map a kernel that fails once more with its intrinsics
   // held at their priors.
-  bool check_kernels = true;
+  bool check_kernels = true;  // --Tmr.check_kernels
+
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
+};
+
+// How models are merged: leaf models into their cluster's, cluster models
+// into scenes, and what is left over.
+struct TmrMergeOptions {
+  // tau of the merge rule (paper Sec. 5).
+  int min_shared_tracks = 12;  // --Tmr.merge_min_shared_tracks
+  // A model that shares too few tracks with a scene for that rule is
+  // aligned by registering up to this many of its images on the scene's
+  // points (AlignModelsByRegisteredImages); 0: the track rule only.
+  int register_images = 10;  // --Tmr.merge_register_images
+  // Finally let COLMAP's mapper continue every model with the images no
+  // model holds yet, and map what is still left from scratch.
+  bool complete_models = true;  // --Tmr.complete_models
+
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
+};
+
+// Bundle adjustment of merged models.
+struct TmrRefinementOptions {
   // Global bundle adjustment of each merged model.
-  bool refine_merged_models = true;
+  bool enabled = true;  // --Tmr.refine_merged_models
   // While image-cluster models are merged into a scene, the scene is
   // refined whenever it has grown by this factor since its last global
   // adjustment (and once more at the end).
-  double merge_refine_growth = 1.5;
+  double growth = 1.5;  // --Tmr.merge_refine_growth
   // Those refinements while scenes grow adjust every pose on only this many
   // longest tracks per image (AdjustOnLongestTracks): the large-scale shape
   // that the next merges are tested against, at a part of the cost; each
   // scene gets its full adjustment once, at the end. 0: every refinement
   // full.
-  int merge_refine_points_per_image = 500;
+  int points_per_image = 500;  // --Tmr.merge_refine_points_per_image
   // A merged model of more registered images is fully bundle-adjusted in two
   // smaller problems (AdjustByBlocks): every pose on the 500 longest tracks
   // of each image, then blocks of at most this many images with all their
   // points; 0 adjusts every model whole (most memory). 1,000 is where
   // COLMAP leaves its direct sparse solver.
-  int ba_max_block_images = 1000;
-  // Finally let COLMAP's mapper continue every model with the images no
-  // model holds yet.
-  bool complete_models = true;
+  int max_block_images = 1000;  // --Tmr.ba_max_block_images
+
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
+};
+
+struct TmrMapperOptions {
+  std::string database_path;  // read-only
+  std::string image_path;     // optional: colours are skipped when empty
+  std::string output_path;    // models 0, 1, ... plus tree.json and report
+  // Worker threads (-1: all cores); this many tasks run at once.
+  int num_threads = -1;  // --Mapper.num_threads
   // Keep the task databases and models in output_path/.tmr_work.
-  bool keep_work = false;
+  bool keep_work = false;  // --Tmr.keep_work
   // Reuse the kernel and leaf tasks that a killed run into the same
   // output_path finished (output_path/.tmr_work), when the database, the
   // partition and the task options are the same; otherwise start clean.
-  bool resume = true;
+  bool resume = true;  // --Tmr.resume
   // Its min_num_matches is taken from mapper.min_num_matches.
   MatchGraphOptions match_graph;
-  TmrTreeOptions tree;
-  MapperPassThroughOptions mapper;
+  TmrTreeOptions tree;              // the partition
+  MapperPassThroughOptions mapper;  // COLMAP's, in every task
+  TmrTaskOptions task;              // kernel and leaf tasks
+  TmrMergeOptions merge;            // cluster and scene merges
+  TmrRefinementOptions refinement;  // adjustment of merged models
 
+  // Lists every option but the paths as a --Mapper.* or --Tmr.* row, the
+  // tree's included (tmr/util/option_table.h): the command line,
+  // project.ini and the resume fingerprint (RunFingerprint) read them.
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 

@@ -7,6 +7,7 @@
 
 #include "tmr/scene/image_graph.h"
 #include "tmr/scene/match_graph.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -17,9 +18,12 @@ struct AffinityPropagationOptions {
   int max_iterations = 1000;
   // Stop when the exemplars stay the same for this many iterations.
   int convergence_iterations = 50;
-  // Seed of the tiny noise that breaks ties between equal similarities.
+  // Seed of the tiny noise that breaks ties between equal similarities
+  // (TmrTreeOptions::seed; not a row of its own).
   uint64_t seed = 0;
 
+  // Lists the options as --Tmr.ap_* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 
@@ -37,6 +41,8 @@ struct ExemplarOptions {
   // Second initial images kept as fall-backs, best first.
   int num_second_images = 5;
 
+  // Lists the options (and ap's) as --Tmr.* rows.
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tmr/scene/image_graph.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -18,6 +19,8 @@ struct MultiLayerShortestPathOptions {
   // is kept. 0 keeps every pair (the paper).
   int min_bridge_side = 2;
 
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 

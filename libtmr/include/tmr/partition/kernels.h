@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "tmr/partition/dense_places.h"
 #include "tmr/scene/image_graph.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -37,7 +39,12 @@ struct KernelOptions {
   // Recursion depth into oversized components before they are carved.
   int max_recursion_depth = 8;
 
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
+  // The dense place search of per_place: places of at least the kernel
+  // size floor.
+  DensePlaceOptions PlaceOptions() const;
   // m for a scene of `num_images` images: at least kernel_size_floor and
   // min_kernel_size.
   int KernelSize(int num_images) const;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tmr/scene/image_graph.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -17,6 +18,8 @@ struct RadialAgglomerateOptions {
   double sigma3 = 3.0;
   double sigma4 = 1.0;
 
+  // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 

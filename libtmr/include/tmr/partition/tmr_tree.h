@@ -12,6 +12,7 @@
 #include "tmr/partition/kernels.h"
 #include "tmr/partition/leaf_clustering.h"
 #include "tmr/scene/match_graph.h"
+#include "tmr/util/option_table.h"
 
 namespace tmr {
 
@@ -23,6 +24,9 @@ struct TmrTreeOptions {
   // Seed of every random choice (copied into exemplar.ap.seed).
   uint64_t seed = 0;
 
+  // Lists every option of the tree as a --Tmr.* row
+  // (tmr/util/option_table.h): the command line and tree.json read them.
+  void AddTo(OptionTable* table);
   bool Check(std::string* error = nullptr) const;
 };
 
@@ -73,7 +77,9 @@ std::string DescribeKernels(const TmrTree& tree);
 
 // tree.json: per kernel "exemplar", "second_image", "second_images",
 // "kernel_images", "leaf_clusters" (lists of names); top level
-// "unclustered", "kernel_size", "parameters", "timing_s". Images by name.
+// "unclustered", "kernel_size", "parameters" (every row of
+// TmrTreeOptions::AddTo by name, e.g. "Tmr.alpha": 1.5), "timing_s". Images
+// by name.
 void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out);
 
 // Reads tree.json. Images get vertex indices in the order of first

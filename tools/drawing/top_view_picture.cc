@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "top_view_picture.h"
+#include "drawing/top_view_picture.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>

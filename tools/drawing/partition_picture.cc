@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "partition_picture.h"
+#include "drawing/partition_picture.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "force_layout.h"
+#include "drawing/force_layout.h"
 
 namespace tmr {
 namespace {

@@ -1,0 +1,137 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// The option rows of tmr_mapper (tmr/util/option_table.h) and their Check.
+#include "tmr/colmap/tmr_mapper.h"
+
+namespace tmr {
+
+void MapperPassThroughOptions::AddTo(OptionTable* t) {
+  auto add = [t](const char* name, auto* value, const char* help) -> auto& {
+    return t->Add(name, value, help).ChangesTasks();
+  };
+  add("Mapper.min_num_matches", &min_num_matches, "inliers for a pair to count")
+      .AtLeast(1);
+  add("Mapper.ignore_watermarks", &ignore_watermarks, "ignore watermark pairs");
+  add("Mapper.init_min_num_inliers", &init_min_num_inliers,
+      "initial pair inliers")
+      .AtLeast(1);
+  add("Mapper.min_model_size", &min_model_size,
+      "with several models, drop those with fewer images")
+      .AtLeast(1);
+  add("Mapper.init_max_forward_motion", &init_max_forward_motion,
+      "initial pair: largest forward share of the motion")
+      .AtLeast(0)
+      .AtMost(1);
+  add("Mapper.init_min_tri_angle", &init_min_tri_angle,
+      "initial pair: smallest median triangulation angle (deg)")
+      .AtLeast(0)
+      .Below(180);
+  add("Mapper.filter_min_tri_angle", &filter_min_tri_angle,
+      "smallest triangulation angle of a kept point (deg)")
+      .AtLeast(0)
+      .Below(180);
+  add("Mapper.abs_pose_min_num_inliers", &abs_pose_min_num_inliers,
+      "PnP inliers")
+      .AtLeast(1);
+  add("Mapper.filter_max_reproj_error", &filter_max_reproj_error,
+      "max reprojection error")
+      .Above(0);
+  add("Mapper.tri_min_angle", &tri_min_angle, "min triangulation angle")
+      .Above(0)
+      .Below(180);
+  add("Mapper.ba_refine_focal_length", &ba_refine_focal_length,
+      "refine focal lengths");
+  add("Mapper.ba_refine_principal_point", &ba_refine_principal_point,
+      "refine principal points");
+  add("Mapper.ba_refine_extra_params", &ba_refine_extra_params,
+      "refine distortion");
+  add("Mapper.ba_global_max_num_iterations", &ba_global_max_num_iterations,
+      "global BA iterations")
+      .AtLeast(1);
+  add("Mapper.ba_global_max_refinements", &ba_global_max_refinements,
+      "global BA rounds with re-triangulation")
+      .AtLeast(1);
+  add("Mapper.ba_global_function_tolerance", &ba_global_function_tolerance,
+      "global BA: relative cost change that ends it (0: off)")
+      .AtLeast(0);
+  add("Mapper.ba_local_num_images", &ba_local_num_images,
+      "local BA: images adjusted")
+      .AtLeast(2);
+  add("Mapper.ba_local_max_num_iterations", &ba_local_max_num_iterations,
+      "local BA iterations")
+      .AtLeast(1);
+  add("Mapper.ba_local_max_refinements", &ba_local_max_refinements,
+      "local BA rounds with re-triangulation")
+      .AtLeast(1);
+  add("Mapper.ba_local_function_tolerance", &ba_local_function_tolerance,
+      "local BA: relative cost change that ends it (0: off)")
+      .AtLeast(0);
+}
+
+void TmrTaskOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.repeatable", &repeatable,
+         "each COLMAP step on one thread: the same seed gives the same models")
+      .ChangesTasks();
+  t->Add("Tmr.fix_base_in_leaves", &fix_base_in_leaves,
+         "keep kernel poses fixed in leaf tasks")
+      .ChangesTasks();
+  t->Add("Tmr.task_ba_global_ratio", &ba_global_ratio,
+         "model growth between global BAs in tasks (COLMAP: 1.1)")
+      .Above(1)
+      .ChangesTasks();
+  t->Add("Tmr.check_kernels", &check_kernels,
+         "redo a kernel its verified matches contradict, intrinsics held")
+      .ChangesTasks();
+}
+
+void TmrMergeOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.merge_min_shared_tracks", &min_shared_tracks,
+         "tau of the merge rule")
+      .AtLeast(3);
+  t->Add("Tmr.merge_register_images", &register_images,
+         "align by registering this many images on a scene (0: off)")
+      .AtLeast(0);
+  t->Add("Tmr.complete_models", &complete_models,
+         "finally register images no model holds");
+}
+
+void TmrRefinementOptions::AddTo(OptionTable* t) {
+  t->Add("Tmr.refine_merged_models", &enabled,
+         "global bundle adjustment after merges");
+  t->Add("Tmr.merge_refine_growth", &growth,
+         "refine a scene whenever merges grew it by this factor")
+      .AtLeast(1);
+  t->Add("Tmr.merge_refine_points_per_image", &points_per_image,
+         "those refinements on this many longest tracks per image (0: all)")
+      .AtLeast(0);
+  t->Add("Tmr.ba_max_block_images", &max_block_images,
+         "adjust larger merged models by blocks of this many (0: whole)")
+      .AtLeast(0);
+}
+
+void TmrMapperOptions::AddTo(OptionTable* t) {
+  t->Add("Mapper.num_threads", &num_threads, "threads (-1: all cores)");
+  mapper.AddTo(t);
+  task.AddTo(t);
+  merge.AddTo(t);
+  refinement.AddTo(t);
+  t->Add("Tmr.resume", &resume,
+         "reuse the tasks a killed run into OUT finished");
+  t->Add("Tmr.keep_work", &keep_work,
+         "keep task databases and models in OUT/.tmr_work");
+  tree.AddTo(t);
+}
+
+bool TmrMapperOptions::Check(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (database_path.empty()) return fail("database_path is empty");
+  if (output_path.empty()) return fail("output_path is empty");
+  if (!CheckOptionRows(*this, error)) return false;
+  if (num_threads == 0 || num_threads < -1)
+    return fail("Mapper.num_threads must be -1 or >= 1");
+  return match_graph.Check(error) && tree.Check(error);
+}
+
+}  // namespace tmr
