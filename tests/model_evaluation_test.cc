@@ -1,11 +1,13 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // tmr_eval's scoring on ground truth, on a similarity-transformed copy and on
-// a copy with one part displaced (a wrong merge).
+// a copy with one part displaced (a wrong merge), and on noisy centres.
 #include <colmap/geometry/sim3.h>
+#include <colmap/math/math.h>
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
@@ -101,6 +103,40 @@ TEST_F(ModelEvaluationTest, DisplacedPartIsAWrongMerge) {
   std::ostringstream json;
   WriteEvaluationJson({e}, "gt", json);
   EXPECT_NE(json.str().find("\"wrong_merge\": true"), std::string::npos);
+}
+
+TEST_F(ModelEvaluationTest, RotationErrorsDoNotDependOnCentreNoise) {
+  // Orientations exact but for one image turned by 1 degree about its
+  // centre; every centre moved by noise of about 0.5% of the scene scale.
+  colmap::Reconstruction copy = *gt_;
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  colmap::image_t turned = colmap::kInvalidImageId;
+  for (const colmap::image_t id : copy.RegImageIds()) {
+    const colmap::Rigid3d world_from_cam =
+        colmap::Inverse(copy.Image(id).CamFromWorld());
+    Eigen::Quaterniond rotation = world_from_cam.rotation();
+    if (turned == colmap::kInvalidImageId) {
+      turned = id;
+      rotation = rotation * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                colmap::DegToRad(1.0), Eigen::Vector3d::UnitY()));
+    }
+    const Eigen::Vector3d centre =
+        world_from_cam.translation() +
+        Eigen::Vector3d(noise(random), noise(random), noise(random));
+    SetPoseAndRegister(id, colmap::Inverse(colmap::Rigid3d(rotation, centre)),
+                       &copy);
+  }
+  const ModelEvaluation e = EvaluateReconstruction(*gt_, copy, {});
+  ASSERT_TRUE(e.aligned);
+  EXPECT_LT(e.rotation_error_deg.median, 1e-6);
+  EXPECT_NEAR(e.rotation_error_deg.max, 1.0, 1e-6);
+  // The sim3 fitted to the noisy centres turns every orientation a little.
+  EXPECT_GT(e.centre_aligned_rotation_error_deg.median, 1e-3);
+  std::ostringstream json;
+  WriteEvaluationJson({e}, "gt", json);
+  EXPECT_NE(json.str().find("\"centre_aligned_rotation_error_deg\""),
+            std::string::npos);
 }
 
 TEST_F(ModelEvaluationTest, PartialModelIsScoredOnCommonImages) {

@@ -2,8 +2,9 @@
 // tmr_eval [--gt GT_MODEL] [--database_path DB] --model DIR [DIR ...]
 //          [--output_json FILE]
 // Scores COLMAP models against ground truth (or against another model given
-// as --gt): registered images, points, reprojection error, and after a robust
-// sim3 alignment rotation and position errors plus a wrong-merge flag. With
+// as --gt): registered images, points, reprojection error, position errors
+// after a robust sim3 alignment of the camera centres, rotation errors after
+// a robust rotation alignment of the orientations, a wrong-merge flag. With
 // --database_path, also without ground truth: the verified matches of the
 // database that the model's poses contradict.
 // A DIR without a model but with numbered sub-folders (mapper output) stands

@@ -53,15 +53,6 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
   if (merge.num_merged > 0) {
     merge.adjustment =
         RefineMergedModel(std::move(cache), mapper, adjustment, merge.model);
-  } else if (adjustment.enabled) {
-    // No leaf joined (a dense place mapped as one kernel, or leaves that
-    // did not fit): the model is the kernel's as its mapper left it, whose
-    // last refinement leaves its last change unadjusted. It gets the full
-    // refinement of a finished scene, since no later merge may touch it.
-    MergedModelAdjustment last = adjustment;
-    last.adjust_after_last_change = true;
-    merge.adjustment =
-        RefineMergedModel(std::move(cache), mapper, last, merge.model);
   }
   return merge;
 }

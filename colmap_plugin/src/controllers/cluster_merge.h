@@ -14,9 +14,9 @@
 namespace tmr {
 
 // The image-cluster model of a kernel (paper Sec. 5.2): its kernel model
-// with each leaf model appended, then refined once (a kernel model that no
-// leaf joined: as a finished scene, MergedModelAdjustment's
-// adjust_after_last_change).
+// with each leaf model appended, then refined once. A kernel model that no
+// leaf joined stays as COLMAP's mapper left it, after its final global
+// refinement.
 struct ClusterMerge {
   struct LeftOut {
     int leaf;            // index into the leaf models

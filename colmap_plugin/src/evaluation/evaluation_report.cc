@@ -105,6 +105,9 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
         << ", \"scene_scale\": " << e.scene_scale << ", ";
     JsonStats(out, "rotation_error_deg", e.rotation_error_deg);
     out << ", ";
+    JsonStats(out, "centre_aligned_rotation_error_deg",
+              e.centre_aligned_rotation_error_deg);
+    out << ", ";
     JsonStats(out, "position_error_relative", e.position_error);
     out << ", \"wrong_merge\": " << (e.wrong_merge ? "true" : "false")
         << ", \"displaced_images\": " << e.num_displaced_images
