@@ -11,7 +11,6 @@
 #include <colmap/scene/reconstruction.h>
 #include <colmap/scene/synthetic.h>
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <filesystem>
 #include <sstream>
@@ -173,19 +172,18 @@ TEST_F(DatabaseSchemasTest, WalDatabaseWithPendingWritesIsReadThroughTheWal) {
   ExecSql(writer / "database.db",
           "PRAGMA journal_mode = WAL; DELETE FROM two_view_geometries;"
           "PRAGMA wal_checkpoint(TRUNCATE);");
-  sqlite3* open = nullptr;
-  ExecSql(writer / "database.db",
-          "PRAGMA wal_autocheckpoint = 0; ATTACH DATABASE '" +
-              ReadOnlySqliteUri(Colmap4Database().string()) +
-              "' AS v4; INSERT INTO two_view_geometries SELECT * FROM "
-              "v4.two_view_geometries; DETACH DATABASE v4;",
-          &open);
+  std::unique_ptr<SqliteDatabase> open =
+      ExecSql(writer / "database.db",
+              "PRAGMA wal_autocheckpoint = 0; ATTACH DATABASE '" +
+                  ReadOnlySqliteUri(Colmap4Database().string()) +
+                  "' AS v4; INSERT INTO two_view_geometries SELECT * FROM "
+                  "v4.two_view_geometries; DETACH DATABASE v4;");
   // The files as a crash would leave them: copied while still open.
   fs::copy_file(writer / "database.db", copy / "database.db",
                 fs::copy_options::overwrite_existing);
   fs::copy_file(writer / "database.db-wal", copy / "database.db-wal",
                 fs::copy_options::overwrite_existing);
-  sqlite3_close(open);
+  open.reset();
   const fs::path wal_db = copy / "database.db";
   const std::string bytes = ReadFileBytes(wal_db);
   const std::string wal_bytes = ReadFileBytes(copy / "database.db-wal");

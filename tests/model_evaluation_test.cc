@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 #include "test_scene.h"
 
 namespace tmr {
@@ -118,8 +118,9 @@ TEST_F(ModelEvaluationTest, RotationErrorsDoNotDependOnCentreNoise) {
     Eigen::Quaterniond rotation = world_from_cam.rotation();
     if (turned == colmap::kInvalidImageId) {
       turned = id;
-      rotation = rotation * Eigen::Quaterniond(Eigen::AngleAxisd(
-                                colmap::DegToRad(1.0), Eigen::Vector3d::UnitY()));
+      rotation =
+          rotation * Eigen::Quaterniond(Eigen::AngleAxisd(
+                         colmap::DegToRad(1.0), Eigen::Vector3d::UnitY()));
     }
     const Eigen::Vector3d centre =
         world_from_cam.translation() +

@@ -14,11 +14,11 @@
 #include <filesystem>
 #include <unordered_set>
 
-#include "controllers/cluster_merge.h"
-#include "controllers/scene_assembly.h"
 #include "evaluation/evaluate_reconstruction.h"
-#include "sfm/model_merging.h"
-#include "sfm/registration_alignment.h"
+#include "merge/cluster_merge.h"
+#include "merge/model_merging.h"
+#include "merge/registration_alignment.h"
+#include "merge/scene_assembly.h"
 #include "test_scene.h"
 
 namespace tmr {

@@ -4,13 +4,14 @@
 // other schemas, corrupt rows or a WAL left behind).
 #pragma once
 
-#include <gtest/gtest.h>
-#include <sqlite3.h>
-
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
+
+#include "tmr/io/database_reader.h"
+#include "tmr/io/sqlite.h"
 
 namespace tmr {
 
@@ -22,23 +23,16 @@ inline std::string ReadFileBytes(const std::filesystem::path& path) {
   return out.str();
 }
 
-// Runs `sql` on a read-write connection to `path`. With `keep_open` the
-// connection is handed back open (so that a WAL database keeps its -wal
-// file until the caller closes it).
-inline void ExecSql(const std::filesystem::path& path, const std::string& sql,
-                    sqlite3** keep_open = nullptr) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-  const std::string message = error ? error : "";
-  sqlite3_free(error);
-  if (keep_open) {
-    *keep_open = db;
-  } else {
-    sqlite3_close(db);
-  }
-  ASSERT_EQ(rc, SQLITE_OK) << message;
+// Runs `sql` on a read-write connection to `path` (created when missing)
+// and hands the connection back: a WAL database keeps its -wal file until
+// the returned connection is destroyed. Throws DatabaseError (the test
+// fails with SQLite's message).
+inline std::unique_ptr<SqliteDatabase> ExecSql(
+    const std::filesystem::path& path, const std::string& sql) {
+  auto db = std::make_unique<SqliteDatabase>(path.string(),
+                                             SqliteDatabase::Mode::kCreate);
+  db->Execute(sql);
+  return db;
 }
 
 }  // namespace tmr

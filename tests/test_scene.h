@@ -12,7 +12,7 @@
 #include <string>
 #include <unordered_set>
 
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 #include "tmr/colmap/synthetic_scene.h"
 
 namespace tmr {

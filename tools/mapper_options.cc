@@ -44,7 +44,7 @@ bool DrawMapperPartitionPicture(const TmrMapperOptions& o) {
   // layout itself takes 3 s at 3,752 images and grows as n log n). The
   // tree's size decides before the match graph is read.
   constexpr size_t kMaxPictureImages = 20000;
-  const fs::path tree_path = fs::path(o.output_path) / "tree.json";
+  const std::string tree_path = TmrTreeJsonPath(o.output_path);
   std::ifstream tree_file(tree_path);
   if (ReadTmrTreeJson(tree_file).image_names.size() > kMaxPictureImages)
     return false;

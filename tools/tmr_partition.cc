@@ -4,10 +4,8 @@
 // DIR/partition.png, then prints a summary.
 #include <boost/program_options.hpp>
 
-#include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "drawing/partition_picture.h"
 #include "tmr/io/database_reader.h"
@@ -46,37 +44,27 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto start = std::chrono::steady_clock::now();
-    const tmr::MatchGraph graph =
-        tmr::ReadMatchGraph(database_path, graph_options);
-    const double read_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-            .count();
-    if (graph.NumImages() == 0)
-      throw std::runtime_error("the database has no images");
-    std::cout << "read " << graph.NumImages() << " images and "
-              << graph.NumPairs() << " verified pairs in " << read_s << " s\n";
-    const tmr::TmrTree tree = tmr::BuildTmrTree(graph, tree_options);
+    const tmr::DatabasePartition partition =
+        tmr::PartitionDatabase(database_path, graph_options, tree_options);
+    std::cout << "read " << partition.graph.NumImages() << " images and "
+              << partition.graph.NumPairs() << " verified pairs in "
+              << partition.read_seconds << " s\n";
     std::error_code ec;
     fs::create_directories(output_path, ec);
     if (ec) {
       throw std::runtime_error("cannot create output folder '" + output_path +
                                "': " + ec.message());
     }
-    std::ostringstream json;
-    tmr::WriteTmrTreeJson(tree, json);
-    const std::string tree_path =
-        (fs::path(output_path) / "tree.json").string();
-    if (!tmr::WriteFileAtomically(tree_path, json.str())) {
+    const std::string tree_path = tmr::TmrTreeJsonPath(output_path);
+    if (!tmr::WriteTmrTreeJsonFile(partition.tree, output_path))
       throw std::runtime_error("cannot write '" + tree_path + "'");
-    }
-    tmr::PrintTreeSummary(tree, std::cout);
+    tmr::PrintTreeSummary(partition.tree, std::cout);
     std::cout << "wrote " << tree_path << "\n";
     if (picture) {
       const std::string png =
           (fs::path(output_path) / "partition.png").string();
-      if (!tmr::DrawPartitionPicture(tmr::BuildSimilarityGraph(graph), tree,
-                                     png)) {
+      if (!tmr::DrawPartitionPicture(tmr::BuildSimilarityGraph(partition.graph),
+                                     partition.tree, png)) {
         throw std::runtime_error("cannot write '" + png + "'");
       }
       std::cout << "wrote " << png << "\n";

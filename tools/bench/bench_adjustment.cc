@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sfm/model_merging.h"
-#include "sfm/task_database.h"
+#include "io/task_database.h"
+#include "merge/model_merging.h"
 
 int main(int argc, char** argv) {
   if (argc != 3 && argc != 4) {

@@ -26,8 +26,8 @@
 #include <string>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "sfm/model_merging.h"
-#include "sfm/task_database.h"
+#include "io/task_database.h"
+#include "merge/model_merging.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace {

@@ -5,7 +5,6 @@
 #include <colmap/controllers/feature_matching.h>
 #include <colmap/feature/sift.h>
 #include <colmap/sensor/models.h>
-#include <sqlite3.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,9 +13,10 @@
 #include <sstream>
 #include <thread>
 
-#include "controllers/tmr_mapper_support.h"
 #include "tmr/io/atomic_file.h"
 #include "tmr/io/database_reader.h"
+#include "tmr/io/sqlite.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
@@ -52,21 +52,14 @@ int CountPhotos(const std::string& folder, std::string* error) {
 // (WAL journal: readers do not block the writer); -1 when it cannot be
 // read right now.
 int64_t CountRows(const std::string& database, const std::string& sql) {
-  sqlite3* db = nullptr;
-  int64_t count = -1;
-  if (sqlite3_open_v2(ReadOnlySqliteUri(database).c_str(), &db,
-                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI,
-                      nullptr) == SQLITE_OK) {
-    sqlite3_busy_timeout(db, 1000);
-    sqlite3_stmt* stmt = nullptr;
-    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt, nullptr) == SQLITE_OK &&
-        sqlite3_step(stmt) == SQLITE_ROW) {
-      count = sqlite3_column_int64(stmt, 0);
-    }
-    sqlite3_finalize(stmt);
+  try {
+    const SqliteDatabase db(database, SqliteDatabase::Mode::kReadOnly,
+                            /*busy_timeout_ms=*/1000);
+    SqliteStatement stmt(db, sql);
+    return stmt.Step() ? stmt.Int(0) : -1;
+  } catch (const DatabaseError&) {
+    return -1;
   }
-  sqlite3_close(db);
-  return count;
 }
 
 // Runs a COLMAP controller thread to its end; about every ten seconds
@@ -108,8 +101,7 @@ TmrMapperOptions ReconstructImagesOptions::MapperOptions() const {
 }
 
 void ReconstructImagesOptions::AddTo(OptionTable* t) {
-  t->Add("num_threads", &num_threads,
-         "threads of every stage (-1: all cores)");
+  t->Add("num_threads", &num_threads, "threads of every stage (-1: all cores)");
   t->Add("matcher", &matcher,
          "auto | exhaustive | sequential (file-name order) | spatial (EXIF "
          "GPS)");

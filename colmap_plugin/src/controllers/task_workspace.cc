@@ -1,15 +1,72 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "controllers/task_workspace.h"
 
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <sstream>
 
-#include "controllers/tmr_mapper_support.h"
-#include "sfm/task_database.h"
+#include "io/task_database.h"
 #include "tmr/io/atomic_file.h"
 
 namespace tmr {
 
 namespace fs = std::filesystem;
+
+uint64_t DatabaseContentHash(const std::string& path) {
+  // Header bytes SQLite rewrites at every commit, even of no change: the
+  // file change counter and the version-valid-for number.
+  const auto is_counter = [](uint64_t at) {
+    return (at >= 24 && at < 28) || (at >= 92 && at < 96);
+  };
+  uint64_t hash = 0x9E3779B97F4A7C15ull;
+  const auto mix = [&hash](uint64_t word) {
+    hash ^= word;
+    hash *= 0xBF58476D1CE4E5B9ull;
+    hash ^= hash >> 31;
+  };
+  for (const std::string& file : {path, path + "-wal"}) {
+    std::ifstream in(file, std::ios::binary);
+    std::vector<char> buffer(1 << 20);
+    uint64_t offset = 0;
+    while (in) {
+      in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      const size_t n = static_cast<size_t>(in.gcount());
+      if (file == path) {
+        for (size_t i = 0; i < n && offset + i < 96; ++i)
+          if (is_counter(offset + i)) buffer[i] = 0;
+      }
+      size_t i = 0;
+      for (uint64_t word; i + 8 <= n; i += 8) {
+        std::memcpy(&word, buffer.data() + i, 8);
+        mix(word);
+      }
+      for (; i < n; ++i) mix(static_cast<unsigned char>(buffer[i]));
+      offset += n;
+    }
+    mix(offset);
+  }
+  return hash;
+}
+
+std::string RunFingerprint(const TmrMapperOptions& options,
+                           const std::string& tree_json) {
+  TmrMapperOptions copy = options;
+  OptionTable table;
+  copy.AddTo(&table);
+  std::ostringstream id;
+  id << "database " << std::hex << DatabaseContentHash(options.database_path)
+     << "\n"
+     << table.Values(/*tasks_only=*/true) << tree_json;
+  return id.str();
+}
+
+std::string ReadFileToString(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream content;
+  content << in.rdbuf();
+  return in ? content.str() : std::string();
+}
 
 TaskWorkspace::TaskWorkspace(fs::path folder) : folder_(std::move(folder)) {}
 

@@ -9,8 +9,26 @@
 #include <vector>
 
 #include "sfm/reconstruction_task.h"
+#include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
+
+// A hash of the content of a SQLite database file and of its write-ahead
+// log, if any. It leaves out the two header counters SQLite rewrites at every
+// commit even when no row changed (COLMAP's own tools, hierarchical_mapper
+// among them, open the database for writing and do that), and the
+// modification time.
+uint64_t DatabaseContentHash(const std::string& path);
+
+// What the kernel and leaf tasks of a run depend on: the partition
+// (tree.json), the database's content (DatabaseContentHash) and the options
+// that change tasks (OptionRow::changes_tasks). A rerun reuses finished
+// tasks only when it matches.
+std::string RunFingerprint(const TmrMapperOptions& options,
+                           const std::string& tree_json);
+
+// The content of a file; empty when it cannot be read.
+std::string ReadFileToString(const std::string& path);
 
 // The work folder of a tmr_mapper run (OUT/.tmr_work): one task database
 // and one model per kernel and leaf task, and a result record per finished

@@ -12,9 +12,10 @@
 #include <unordered_set>
 
 #include "controllers/task_graph.h"
+#include "controllers/tmr_mapper_report.h"
 #include "controllers/tmr_mapper_stages.h"
-#include "controllers/tmr_mapper_support.h"
 #include "tmr/io/atomic_file.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
@@ -311,6 +312,12 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
     return false;
   Finish(effective, stages, start, report);
   return true;
+}
+
+void ConfigureColmapLogging(const char* program, bool verbose) {
+  FLAGS_logtostderr = true;
+  FLAGS_minloglevel = verbose ? google::GLOG_INFO : google::GLOG_WARNING;
+  if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(program);
 }
 
 }  // namespace tmr

@@ -1,6 +1,9 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The option rows of tmr_mapper (tmr/util/option_table.h) and their Check.
-#include "tmr/colmap/tmr_mapper.h"
+// The option rows of tmr_mapper (tmr/util/option_table.h), their Check, and
+// their conversion to COLMAP's options.
+#include "controllers/tmr_mapper_options.h"
+
+#include <limits>
 
 namespace tmr {
 
@@ -132,6 +135,48 @@ bool TmrMapperOptions::Check(std::string* error) const {
   if (num_threads == 0 || num_threads < -1)
     return fail("Mapper.num_threads must be -1 or >= 1");
   return match_graph.Check(error) && tree.Check(error);
+}
+
+colmap::IncrementalPipelineOptions ColmapOptions(
+    const TmrMapperOptions& options, int num_threads) {
+  const MapperPassThroughOptions& m = options.mapper;
+  colmap::IncrementalPipelineOptions o;
+  o.min_num_matches = m.min_num_matches;
+  o.ignore_watermarks = m.ignore_watermarks;
+  o.min_model_size = m.min_model_size;
+  o.mapper.init_min_num_inliers = m.init_min_num_inliers;
+  o.mapper.abs_pose_min_num_inliers = m.abs_pose_min_num_inliers;
+  o.mapper.init_max_forward_motion = m.init_max_forward_motion;
+  o.mapper.init_min_tri_angle = m.init_min_tri_angle;
+  o.mapper.filter_min_tri_angle = m.filter_min_tri_angle;
+  o.mapper.filter_max_reproj_error = m.filter_max_reproj_error;
+  o.triangulation.min_angle = m.tri_min_angle;
+  o.ba_refine_focal_length = m.ba_refine_focal_length;
+  o.ba_refine_principal_point = m.ba_refine_principal_point;
+  o.ba_refine_extra_params = m.ba_refine_extra_params;
+  o.ba_global_max_num_iterations = m.ba_global_max_num_iterations;
+  o.ba_global_max_refinements = m.ba_global_max_refinements;
+  o.ba_global_function_tolerance = m.ba_global_function_tolerance;
+  o.mapper.ba_local_num_images = m.ba_local_num_images;
+  o.ba_local_max_num_iterations = m.ba_local_max_num_iterations;
+  o.ba_local_max_refinements = m.ba_local_max_refinements;
+  o.ba_local_function_tolerance = m.ba_local_function_tolerance;
+  o.num_threads = options.task.repeatable ? 1 : num_threads;
+  o.random_seed =
+      static_cast<int>(options.tree.seed % std::numeric_limits<int>::max());
+  return o;
+}
+
+MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
+                                       bool while_merging) {
+  MergedModelAdjustment adjustment;
+  adjustment.enabled = options.refinement.enabled;
+  adjustment.max_block_images = options.refinement.max_block_images;
+  if (while_merging)
+    adjustment.longest_tracks_per_image = options.refinement.points_per_image;
+  else
+    adjustment.max_refinements = options.mapper.ba_global_max_refinements;
+  return adjustment;
 }
 
 }  // namespace tmr

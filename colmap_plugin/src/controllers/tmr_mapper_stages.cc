@@ -9,12 +9,13 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "controllers/cluster_merge.h"
-#include "controllers/scene_assembly.h"
-#include "controllers/tmr_mapper_support.h"
+#include "controllers/tmr_mapper_options.h"
+#include "io/task_database.h"
+#include "merge/cluster_merge.h"
+#include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"
-#include "sfm/task_database.h"
 #include "tmr/io/atomic_file.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
@@ -47,9 +48,15 @@ TmrMapperStages::TmrMapperStages(const TmrMapperOptions& options)
 
 bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
                            std::string* error) {
-  const auto start = Clock::now();
-  const MatchGraph graph = ReadMatchGraph(o_.database_path, o_.match_graph);
-  if (graph.NumImages() == 0) return Fail("the database has no images", error);
+  DatabasePartition partition;
+  try {
+    partition = PartitionDatabase(o_.database_path, o_.match_graph, o_.tree);
+  } catch (const DatabaseError&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // no images
+    return Fail(e.what(), error);
+  }
+  const MatchGraph& graph = partition.graph;
   if (!CheckKeypointsAndCameras(o_.database_path, error)) return false;
   if (const int rigs = CountMultiCameraRigs(o_.database_path);
       rigs > 0 && progress) {
@@ -59,9 +66,9 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
   }
   if (graph.NumPairs() == 0)
     return Fail("the database has no verified image pairs", error);
-  tree_ = BuildTmrTree(graph, o_.tree);
+  tree_ = std::move(partition.tree);
   report->num_images = graph.NumImages();
-  report->partition_seconds = SecondsSince(start);
+  report->partition_seconds = partition.seconds;
   // The kernel and leaf tasks a killed run finished are reused when the
   // database, the partition and the options of the tasks are the same.
   TmrTree untimed = tree_;
@@ -78,7 +85,7 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
          << "\n";
   }
   const fs::path out(o_.output_path);
-  if (!WriteFileAtomically((out / "tree.json").string(), TreeJson(tree_)) ||
+  if (!WriteTmrTreeJsonFile(tree_, o_.output_path) ||
       !WriteFileAtomically((out / "plan.txt").string(), plan.str())) {
     return Fail(
         "cannot write tree.json and plan.txt in '" + o_.output_path + "'",
@@ -98,7 +105,8 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
 
 bool TmrMapperStages::Load(std::string* error) {
   const fs::path out(o_.output_path);
-  std::ifstream in(out / "tree.json");
+  const std::string tree_path = TmrTreeJsonPath(o_.output_path);
+  std::ifstream in(tree_path);
   if (!in || !fs::exists(out / "plan.txt")) {
     return Fail("no plan in '" + o_.output_path +
                     "' (run `tmr_mapper partition` first)",
@@ -111,9 +119,7 @@ bool TmrMapperStages::Load(std::string* error) {
   try {
     tree_ = ReadTmrTreeJson(in, names);
   } catch (const std::exception& e) {
-    return Fail(
-        "cannot read '" + (out / "tree.json").string() + "': " + e.what(),
-        error);
+    return Fail("cannot read '" + tree_path + "': " + e.what(), error);
   }
   for (const MatchGraphImage& image : images)
     tree_.image_ids.push_back(image.image_id);

@@ -13,8 +13,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "io/task_database.h"
 #include "sfm/match_consistency.h"
-#include "sfm/task_database.h"
 
 namespace tmr {
 namespace {

@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 
 namespace tmr {
 namespace {

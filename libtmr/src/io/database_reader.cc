@@ -8,19 +8,16 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "io/sqlite_connection.h"
+#include "tmr/io/sqlite.h"
 
 namespace tmr {
 namespace {
-
-using internal::ReadOnlySqlite;
-using internal::Statement;
 
 // COLMAP encodes an image pair as image_id1 * kMaxNumImages + image_id2 with
 // image_id1 < image_id2 (scene/database.cc).
 constexpr int64_t kMaxNumImages = std::numeric_limits<int32_t>::max();
 
-void RequireSchema(const ReadOnlySqlite& db) {
+void RequireSchema(const SqliteDatabase& db) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> kNeeded =
       {{"images", {"image_id", "name", "camera_id"}},
        {"keypoints", {"image_id", "rows"}},
@@ -37,9 +34,9 @@ void RequireSchema(const ReadOnlySqlite& db) {
   }
 }
 
-std::vector<MatchGraphImage> ReadImages(const ReadOnlySqlite& db) {
+std::vector<MatchGraphImage> ReadImages(const SqliteDatabase& db) {
   std::vector<MatchGraphImage> images;
-  Statement stmt(db, "SELECT image_id, name, camera_id FROM images");
+  SqliteStatement stmt(db, "SELECT image_id, name, camera_id FROM images");
   while (stmt.Step()) {
     const int64_t id = stmt.Int(0);
     if (id < 1 || id > kMaxNumImages) {
@@ -64,8 +61,8 @@ std::vector<MatchGraphImage> ReadImages(const ReadOnlySqlite& db) {
   return images;
 }
 
-void ReadKeypointCounts(const ReadOnlySqlite& db, MatchGraph* graph) {
-  Statement stmt(db, "SELECT image_id, rows FROM keypoints");
+void ReadKeypointCounts(const SqliteDatabase& db, MatchGraph* graph) {
+  SqliteStatement stmt(db, "SELECT image_id, rows FROM keypoints");
   while (stmt.Step()) {
     const int64_t id = stmt.Int(0);
     const int64_t rows = stmt.Int(1);
@@ -90,16 +87,17 @@ std::string JoinConfigs(const std::vector<int>& configs) {
 
 // Streams the inlier blobs of the counted pairs once: fills graph->pairs and
 // marks, per image, which keypoints take part in an inlier match.
-void ReadVerifiedPairs(const ReadOnlySqlite& db,
+void ReadVerifiedPairs(const SqliteDatabase& db,
                        const MatchGraphOptions& options, MatchGraph* graph) {
   std::vector<std::vector<uint8_t>> matched(graph->images.size());
   for (size_t i = 0; i < graph->images.size(); ++i) {
     matched[i].assign(graph->images[i].num_keypoints, 0);
   }
-  Statement stmt(db,
-                 "SELECT pair_id, rows, cols, config, data "
-                 "FROM two_view_geometries WHERE rows >= ? AND config IN (" +
-                     JoinConfigs(options.verified_configs) + ")");
+  SqliteStatement stmt(
+      db,
+      "SELECT pair_id, rows, cols, config, data "
+      "FROM two_view_geometries WHERE rows >= ? AND config IN (" +
+          JoinConfigs(options.verified_configs) + ")");
   stmt.BindInt(1, std::max(1, options.min_num_matches));
   while (stmt.Step()) {
     const int64_t pair_id = stmt.Int(0);
@@ -179,7 +177,7 @@ bool MatchGraphOptions::Check(std::string* error) const {
 
 std::vector<MatchGraphImage> ReadDatabaseImages(
     const std::string& database_path) {
-  ReadOnlySqlite db(database_path);
+  SqliteDatabase db(database_path);
   RequireSchema(db);
   return ReadImages(db);
 }
@@ -190,7 +188,7 @@ MatchGraph ReadMatchGraph(const std::string& database_path,
   if (!options.Check(&error)) {
     throw std::invalid_argument("MatchGraphOptions: " + error);
   }
-  ReadOnlySqlite db(database_path);
+  SqliteDatabase db(database_path);
   RequireSchema(db);
   MatchGraph graph;
   graph.images = ReadImages(db);

@@ -4,11 +4,12 @@
 #include "tmr/io/database_reader.h"
 
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "tmr/io/sqlite.h"
 
 namespace tmr {
 namespace {
@@ -67,14 +68,10 @@ TEST_F(DatabaseReaderErrors, EmptyFileHasNoTables) {
 
 TEST_F(DatabaseReaderErrors, OtherSqliteDatabase) {
   const fs::path path = dir_ / "other.db";
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db,
-                         "CREATE TABLE images(image_id INTEGER, name TEXT);"
-                         "CREATE TABLE keypoints(image_id INTEGER, rows INT);",
-                         nullptr, nullptr, nullptr),
-            SQLITE_OK);
-  sqlite3_close(db);
+  SqliteDatabase(path.string(), SqliteDatabase::Mode::kCreate)
+      .Execute(
+          "CREATE TABLE images(image_id INTEGER, name TEXT);"
+          "CREATE TABLE keypoints(image_id INTEGER, rows INT);");
   ExpectError(path, "table 'images' has no column 'camera_id'");
 }
 

@@ -1,13 +1,16 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // tree.json reading and writing (nlohmann::json, private to libtmr).
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <unordered_map>
 #include <variant>
 
+#include "tmr/io/atomic_file.h"
 #include "tmr/partition/tmr_tree.h"
 #include "tmr/util/option_table.h"
 
@@ -182,6 +185,16 @@ TmrTree ReadTmrTreeJson(std::istream& in,
     throw std::runtime_error(std::string("malformed tree.json: ") + e.what());
   }
   return tree;
+}
+
+std::string TmrTreeJsonPath(const std::string& folder) {
+  return (std::filesystem::path(folder) / "tree.json").string();
+}
+
+bool WriteTmrTreeJsonFile(const TmrTree& tree, const std::string& folder) {
+  std::ostringstream json;
+  WriteTmrTreeJson(tree, json);
+  return WriteFileAtomically(TmrTreeJsonPath(folder), json.str());
 }
 
 }  // namespace tmr

@@ -10,17 +10,9 @@
 #include <string>
 
 #include "tmr/scene/image_graph.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
-namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
-}  // namespace
-
 void TmrTreeOptions::AddTo(OptionTable* t) {
   t->Add("Tmr.seed", &seed, "seed of every random choice");
   kernels.AddTo(t);
@@ -117,6 +109,20 @@ std::string DescribeKernels(const TmrTree& tree) {
     text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + origin;
   return text + "; " + std::to_string(smallest) + "-" +
          std::to_string(largest) + " images";
+}
+
+DatabasePartition PartitionDatabase(const std::string& database_path,
+                                    const MatchGraphOptions& graph_options,
+                                    const TmrTreeOptions& tree_options) {
+  const auto start = std::chrono::steady_clock::now();
+  DatabasePartition partition;
+  partition.graph = ReadMatchGraph(database_path, graph_options);
+  partition.read_seconds = SecondsSince(start);
+  if (partition.graph.NumImages() == 0)
+    throw std::runtime_error("the database has no images");
+  partition.tree = BuildTmrTree(partition.graph, tree_options);
+  partition.seconds = SecondsSince(start);
+  return partition;
 }
 
 }  // namespace tmr

@@ -32,16 +32,6 @@ struct MatchGraphOptions {
   bool Check(std::string* error = nullptr) const;
 };
 
-// An SQLite "file:" URI that opens `path` read-only and leaves nothing
-// beside it. COLMAP keeps databases in WAL journal mode, and a read-only
-// connection to a WAL database creates -wal and -shm files it cannot remove;
-// so a cleanly closed database (no -wal file) is opened as immutable. One
-// with a -wal file is still open in COLMAP or was not closed cleanly and is
-// read through the WAL, unless `force_immutable`. The path is
-// percent-encoded (quotes too, so the URI can stand in an SQL literal).
-std::string ReadOnlySqliteUri(const std::string& path,
-                              bool force_immutable = false);
-
 // Reads the verified match graph from a COLMAP database (schemas of COLMAP
 // 3.8 to 4.x; tables that are not needed, such as rigs and frames, are
 // ignored). The file is opened read-only and is never modified.

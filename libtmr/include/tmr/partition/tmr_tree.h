@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tmr/io/database_reader.h"
 #include "tmr/partition/exemplar.h"
 #include "tmr/partition/image_clustering.h"
 #include "tmr/partition/kernels.h"
@@ -81,6 +82,27 @@ std::string DescribeKernels(const TmrTree& tree);
 // TmrTreeOptions::AddTo by name, e.g. "Tmr.alpha": 1.5), "timing_s". Images
 // by name.
 void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out);
+
+// The tree.json of an output folder: the one path rule for every tool.
+std::string TmrTreeJsonPath(const std::string& folder);
+
+// Writes WriteTmrTreeJson's text to TmrTreeJsonPath(folder), atomically
+// (the folder must exist); false when it cannot.
+bool WriteTmrTreeJsonFile(const TmrTree& tree, const std::string& folder);
+
+// The first step of tmr_partition and tmr_mapper: the verified match graph
+// of a COLMAP database (ReadMatchGraph, read-only) and its TMR-tree. Throws
+// DatabaseError for the database, std::runtime_error for a database without
+// images, std::invalid_argument for options that fail their Check().
+struct DatabasePartition {
+  MatchGraph graph;
+  TmrTree tree;
+  double read_seconds = 0.0;  // reading the match graph
+  double seconds = 0.0;       // reading and partitioning
+};
+DatabasePartition PartitionDatabase(const std::string& database_path,
+                                    const MatchGraphOptions& graph_options,
+                                    const TmrTreeOptions& tree_options);
 
 // Reads tree.json. Images get vertex indices in the order of first
 // appearance in `image_names` if given (the match graph's names), else in

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 
 #include <colmap/estimators/bundle_adjustment.h>
 #include <colmap/estimators/solvers/similarity_transform.h>

@@ -5,14 +5,14 @@
 #include <algorithm>
 #include <unordered_map>
 
-#include "controllers/scene_assembly.h"
-#include "sfm/registration_alignment.h"
+#include "merge/registration_alignment.h"
+#include "merge/scene_assembly.h"
 
 namespace tmr {
 
 std::vector<SceneAssembler::ModelLink> SceneAssembler::Links(
     const colmap::Reconstruction& model,
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+    const std::vector<const colmap::Reconstruction*>& scenes) const {
   std::unordered_map<colmap::image_t, int> owner;
   for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
     for (const colmap::image_t id : scenes[i]->RegImageIds()) owner[id] = i;
@@ -31,11 +31,11 @@ std::vector<SceneAssembler::ModelLink> SceneAssembler::Links(
   return links;
 }
 
-std::vector<std::shared_ptr<colmap::Reconstruction>>
-SceneAssembler::LinkedScenes(
-    const colmap::Reconstruction& model,
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
-  const std::vector<ModelLink> links = Links(model, scenes);
+std::vector<int> SceneAssembler::LinkedScenes(
+    const colmap::Reconstruction& model, const Scenes& scenes) const {
+  std::vector<const colmap::Reconstruction*> models;
+  for (const AssemblyScene& scene : scenes) models.push_back(scene.model.get());
+  const std::vector<ModelLink> links = Links(model, models);
   std::vector<int> order;
   for (int i = 0; i < static_cast<int>(scenes.size()); ++i)
     if (links[i].num_pairs > 0) order.push_back(i);
@@ -43,9 +43,7 @@ SceneAssembler::LinkedScenes(
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return links[a].num_correspondences > links[b].num_correspondences;
   });
-  std::vector<std::shared_ptr<colmap::Reconstruction>> linked;
-  for (const int i : order) linked.push_back(scenes[i]);
-  return linked;
+  return order;
 }
 
 ModelAlignment SceneAssembler::Align(
@@ -75,9 +73,11 @@ ModelAlignment SceneAssembler::Align(
 
 std::vector<TmrWeakLink> SceneAssembler::WeakLinks(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
+  std::vector<const colmap::Reconstruction*> models;
+  for (const auto& scene : scenes) models.push_back(scene.get());
   std::vector<TmrWeakLink> weak_links;
   for (int j = 1; j < static_cast<int>(scenes.size()); ++j) {
-    const std::vector<ModelLink> links = Links(*scenes[j], scenes);
+    const std::vector<ModelLink> links = Links(*scenes[j], models);
     for (int i = 0; i < j; ++i) {
       if (links[i].num_pairs == 0) continue;
       const ModelAlignment a = Align(*scenes[i], *scenes[j]);

@@ -12,7 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
@@ -26,17 +26,31 @@ namespace tmr {
 int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
                            int min_anchored, colmap::Reconstruction* scene);
 
-// Orders models by registered images, largest first.
-void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models);
+// A scene model and its refinement state, carried through the passes of
+// SceneAssembler::Assemble. The state lives and dies with its scene: a
+// model that merges into another leaves the list with it.
+struct AssemblyScene {
+  std::shared_ptr<colmap::Reconstruction> model;
+  // Merged or completed since its last full global adjustment.
+  bool unrefined = false;
+  // Registered images at its last global adjustment, or when it entered
+  // the assembly.
+  size_t refined_size = 0;
+  // Registered images before the current late pass (RefineLateMerges).
+  std::unordered_set<colmap::image_t> held;
+};
+
+// Orders scenes by registered images, largest first.
+void SortBySize(std::vector<AssemblyScene>* scenes);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
-// (sfm/model_merging.h) or by images registered on the scene's points
-// (sfm/registration_alignment.h), then COLMAP's mapper completes them with the
-// images no model holds, and maps from scratch what is still left (the
-// image-cluster models come from controllers/cluster_merge.h). How two models
-// are linked and aligned (Links, LinkedScenes, Align, WeakLinks) is in
-// scene_links.cc.
+// (merge/model_merging.h) or by images registered on the scene's points
+// (merge/registration_alignment.h), then COLMAP's mapper completes them
+// with the images no model holds, and maps from scratch what is still left
+// (the image-cluster models come from merge/cluster_merge.h). How two
+// models are linked and aligned (Links, LinkedScenes, Align, WeakLinks) is
+// in scene_links.cc, the completion passes in scene_completion.cc.
 class SceneAssembler {
  public:
   // COLMAP's mapper adjusts a model globally when it has grown by 10%
@@ -53,28 +67,35 @@ class SceneAssembler {
                  std::function<void(const TmrTaskReport&)> record);
 
   // The whole last stage: MergeScenes, CompleteScenes, ReconstructLeftovers
-  // (the last two when options.merge.complete_models), RefineMergedScenes, then
-  // MergeScenes once more on the refined scenes and RefineLateMerges, and
-  // (options.merge.complete_models) CompleteScenes on the refined scenes with
-  // RefineLateMerges of the images it added. Returns the scene models,
-  // largest first.
+  // (the last two when options.merge.complete_models), RefineMergedScenes,
+  // then MergeScenes once more on the refined scenes and RefineLateMerges,
+  // and (options.merge.complete_models) CompleteScenes on the refined
+  // scenes with RefineLateMerges of the images it added. Returns the scene
+  // models, largest first.
   std::vector<std::shared_ptr<colmap::Reconstruction>> Assemble(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
 
+  // Every pair of `scenes` (the final models, in output order) that
+  // verified pairs link: how strongly, and why Align keeps them apart.
+  std::vector<TmrWeakLink> WeakLinks(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+
+ private:
+  using Scenes = std::vector<AssemblyScene>;
+
   // Each model joins the first scene it aligns with (Align), the scenes
   // tried in order of the verified matches between them and the model,
-  // those without any skipped, until nothing merges; returns the scene
-  // models, largest first. With options.merge.complete_models, a model below
+  // those without any skipped, until nothing merges; leaves the scenes
+  // largest first. With options.merge.complete_models, a model below
   // MinModelSize stays apart: CompleteScenes registers its photos one by
-  // one. A scene is refined
-  // (Refine) whenever it has grown by options.refinement.growth since its
-  // last global adjustment, as COLMAP's mapper refines a model grown by
-  // 10%: parts appended one after another around a city's loops drift
-  // apart, later parts then fit only in places, and one adjustment at the
-  // end starts too far off (docs/mapper.md, step 4). Between those, merges
-  // add no adjustment: one per merge would cost far more.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeScenes(
-      std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
+  // one. A scene is refined (Refine) whenever it has grown by
+  // options.refinement.growth since its last global adjustment, as COLMAP's
+  // mapper refines a model grown by 10%: parts appended one after another
+  // around a city's loops drift apart, later parts then fit only in
+  // places, and one adjustment at the end starts too far off
+  // (docs/mapper.md, step 4). Between those, merges add no adjustment: one
+  // per merge would cost far more.
+  void MergeScenes(Scenes* scenes) const;
   // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
   size_t MinModelSize() const;
 
@@ -91,34 +112,32 @@ class SceneAssembler {
   // COLMAP's steps does is not traced). Those moves are repeatable; the
   // run-to-run differences first blamed on them came from the unseeded
   // generator of the cluster merge's alignment (MergeLeafModels).
-  void CompleteScenes(
-      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes,
-      bool keep_unless_grown = false) const;
+  void CompleteScenes(Scenes* scenes, bool keep_unless_grown = false) const;
 
   // Refines the scenes merged or completed since their last global
   // adjustment: tracks completed and merged over the full correspondence
   // graph, global bundle adjustment, point filtering.
-  void RefineMergedScenes(
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+  void RefineMergedScenes(Scenes* scenes) const;
 
   // After the second try of the models that did not fit before
-  // RefineMergedScenes, or the last completion (`held`: each scene's images
-  // before it): a scene that this grew by less than kFullAdjustmentGrowth
-  // gets an adjustment of only the images that joined, with their points
-  // (MergedModelAdjustment::only_images), a larger one a full one again:
-  // a second full adjustment costs as much as the first, and the lighter
-  // one of the refinements while merging moves every pose (docs/mapper.md,
-  // step 8).
-  void RefineLateMerges(
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
-      const std::unordered_map<const colmap::Reconstruction*,
-                               std::unordered_set<colmap::image_t>>& held)
-      const;
+  // RefineMergedScenes, or the last completion (each scene's `held`: its
+  // images before): a scene that this grew by less than
+  // kFullAdjustmentGrowth gets an adjustment of only the images that
+  // joined, with their points (MergedModelAdjustment::only_images), a
+  // larger one a full one again: a second full adjustment costs as much as
+  // the first, and the lighter one of the refinements while merging moves
+  // every pose (docs/mapper.md, step 8).
+  void RefineLateMerges(Scenes* scenes) const;
 
   // Maps the images no scene holds from scratch (several models if need
   // be) and adds the models; returns whether it added any.
-  bool ReconstructLeftovers(
-      std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const;
+  bool ReconstructLeftovers(Scenes* scenes) const;
+
+  // Re-links tracks, global adjustment and filtering (RefineMergedModel):
+  // the full adjustment, or while merging the one that the options ask for
+  // then (MergedAdjustment), or of `only_images` when not empty.
+  void Refine(AssemblyScene* scene, bool while_merging,
+              const std::vector<colmap::image_t>& only_images = {}) const;
 
   // The scene merge of `model` into `scene`: the shared-track rule
   // (AlignModelsBySharedTracks), and where it refuses, images of the model
@@ -127,11 +146,10 @@ class SceneAssembler {
   ModelAlignment Align(const colmap::Reconstruction& scene,
                        const colmap::Reconstruction& model) const;
 
-  // The scenes that verified pairs link `model` to, the one with the most
-  // verified matches first.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> LinkedScenes(
-      const colmap::Reconstruction& model,
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+  // Indices of the scenes that verified pairs link `model` to, the one with
+  // the most verified matches first.
+  std::vector<int> LinkedScenes(const colmap::Reconstruction& model,
+                                const Scenes& scenes) const;
 
   // Verified image pairs between `model` and each of `scenes`, and their
   // matches.
@@ -141,14 +159,8 @@ class SceneAssembler {
   };
   std::vector<ModelLink> Links(
       const colmap::Reconstruction& model,
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
+      const std::vector<const colmap::Reconstruction*>& scenes) const;
 
-  // Every pair of `scenes` (the final models, in output order) that
-  // verified pairs link: how strongly, and why Align keeps them apart.
-  std::vector<TmrWeakLink> WeakLinks(
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const;
-
- private:
   const TmrMapperOptions& o_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
   std::string merge_database_;
@@ -159,18 +171,6 @@ class SceneAssembler {
   std::unordered_map<colmap::image_t,
                      std::vector<std::pair<colmap::image_t, int>>>
       image_links_;
-  // Re-links tracks, global adjustment and filtering (RefineMergedModel):
-  // the full adjustment, or while merging the one that the options ask for
-  // then (MergedAdjustment), or of `only_images` when not empty.
-  void Refine(const std::shared_ptr<colmap::Reconstruction>& scene,
-              bool while_merging,
-              const std::vector<colmap::image_t>& only_images = {}) const;
-
-  // Scenes merged or completed since their last full global adjustment.
-  mutable std::unordered_set<const colmap::Reconstruction*> unrefined_;
-  // Registered images of each scene at its last global adjustment.
-  mutable std::unordered_map<const colmap::Reconstruction*, size_t>
-      refined_size_;
 };
 
 }  // namespace tmr

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "controllers/cluster_merge.h"
+#include "merge/cluster_merge.h"
 
 #include <colmap/estimators/alignment.h>
 #include <colmap/math/random.h>

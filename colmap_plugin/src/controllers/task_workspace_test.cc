@@ -1,13 +1,11 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "controllers/tmr_mapper_support.h"
+#include "controllers/task_workspace.h"
 
 #include <colmap/scene/database.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cmath>
 #include <filesystem>
-#include <set>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -127,29 +125,6 @@ TEST(RunFingerprint, ChangesWithEveryOptionThatReachesATask) {
   }
   EXPECT_EQ(num_task_rows, 24);
   fs::remove(path);
-}
-
-// Every row's default is allowed, and the names are unique.
-TEST(TmrMapperOptions, DefaultsPassTheirRowsAndNamesAreUnique) {
-  TmrMapperOptions options;
-  options.database_path = "db";
-  options.output_path = "out";
-  std::string error;
-  EXPECT_TRUE(options.Check(&error)) << error;
-  OptionTable table;
-  options.AddTo(&table);
-  std::set<std::string> names;
-  for (const OptionRow& row : table.rows())
-    EXPECT_TRUE(names.insert(row.name).second) << row.name;
-  EXPECT_GT(table.rows().size(), 50u);
-
-  options.tree.kernels.alpha = 0.5;
-  EXPECT_FALSE(options.Check(&error));
-  EXPECT_EQ(error, "Tmr.alpha must be >= 1");
-  options.tree.kernels.alpha = 1.5;
-  options.mapper.init_max_forward_motion = std::nan("");
-  EXPECT_FALSE(options.Check(&error));
-  EXPECT_EQ(error, "Mapper.init_max_forward_motion must be in [0, 1]");
 }
 
 }  // namespace

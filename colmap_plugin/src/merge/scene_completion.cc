@@ -6,14 +6,16 @@
 #include <colmap/scene/reconstruction_manager.h>
 #include <colmap/sfm/incremental_mapper.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <optional>
 #include <unordered_set>
 
-#include "controllers/scene_assembly.h"
-#include "controllers/tmr_mapper_support.h"
+#include "controllers/tmr_mapper_options.h"
+#include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
@@ -23,12 +25,13 @@ using Clock = std::chrono::steady_clock;
 // Names of the images that the first `count` models register (all: every
 // model).
 std::unordered_set<std::string> HeldImageNames(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
+    const std::vector<AssemblyScene>& scenes,
     size_t count = std::numeric_limits<size_t>::max()) {
   std::unordered_set<std::string> held;
-  for (size_t i = 0; i < std::min(count, models.size()); ++i) {
-    for (const colmap::image_t id : models[i]->RegImageIds())
-      held.insert(models[i]->Image(id).Name());
+  for (size_t i = 0; i < std::min(count, scenes.size()); ++i) {
+    const colmap::Reconstruction& model = *scenes[i].model;
+    for (const colmap::image_t id : model.RegImageIds())
+      held.insert(model.Image(id).Name());
   }
   return held;
 }
@@ -67,9 +70,8 @@ int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
 // works on the loaded correspondences; the one global adjustment follows
 // in RefineMergedScenes. An image a smaller model gave up leaves that
 // model.
-void SceneAssembler::CompleteScenes(
-    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes,
-    bool keep_unless_grown) const {
+void SceneAssembler::CompleteScenes(Scenes* scenes,
+                                    bool keep_unless_grown) const {
   SortBySize(scenes);
   const auto colmap_options = ColmapOptions(o_, num_threads_);
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
@@ -82,7 +84,8 @@ void SceneAssembler::CompleteScenes(
     structure_less_flags = {false, true};
   for (int i = 0; i < static_cast<int>(scenes->size()); ++i) {
     const auto start = Clock::now();
-    const auto& scene = (*scenes)[i];
+    AssemblyScene& assembly_scene = (*scenes)[i];
+    const std::shared_ptr<colmap::Reconstruction>& scene = assembly_scene.model;
     const int before = static_cast<int>(scene->NumRegImages());
     if (before < 2) continue;
     const std::vector<colmap::image_t>& held = scene->RegImageIds();
@@ -131,7 +134,7 @@ void SceneAssembler::CompleteScenes(
     if (kept && added == 0) *scene = *kept;
     int taken = 0;
     for (int j = i + 1; j < static_cast<int>(scenes->size()); ++j) {
-      colmap::Reconstruction& smaller = *(*scenes)[j];
+      colmap::Reconstruction& smaller = *(*scenes)[j].model;
       for (const colmap::image_t id :
            std::vector<colmap::image_t>(smaller.RegImageIds())) {
         if (!before_ids.count(id) && scene->ExistsImage(id) &&
@@ -141,7 +144,7 @@ void SceneAssembler::CompleteScenes(
         }
       }
     }
-    if (added > 0) unrefined_.insert(scene.get());
+    if (added > 0) assembly_scene.unrefined = true;
     record_({"complete model " + std::to_string(i), before,
              static_cast<int>(scene->NumRegImages()), SecondsSince(start), true,
              std::to_string(added) + " images added" +
@@ -157,11 +160,8 @@ void SceneAssembler::CompleteScenes(
   }
   // Models that gave up all but one image are gone.
   scenes->erase(std::remove_if(scenes->begin(), scenes->end(),
-                               [this](const auto& model) {
-                                 if (model->NumRegImages() >= 2) return false;
-                                 unrefined_.erase(model.get());
-                                 refined_size_.erase(model.get());
-                                 return true;
+                               [](const AssemblyScene& scene) {
+                                 return scene.model->NumRegImages() < 2;
                                }),
                 scenes->end());
   SortBySize(scenes);
@@ -171,8 +171,7 @@ void SceneAssembler::CompleteScenes(
 // `colmap mapper` would on them alone (several models if need be): parts
 // of the scene that no kernel reached, or kernels COLMAP could only partly
 // reconstruct. Returns whether it added a model.
-bool SceneAssembler::ReconstructLeftovers(
-    std::vector<std::shared_ptr<colmap::Reconstruction>>* scenes) const {
+bool SceneAssembler::ReconstructLeftovers(Scenes* scenes) const {
   const auto start = Clock::now();
   const auto held = HeldImageNames(*scenes);
   auto options = std::make_shared<colmap::IncrementalPipelineOptions>(
@@ -191,7 +190,7 @@ bool SceneAssembler::ReconstructLeftovers(
   for (const auto& model : DisjointModels(*manager)) {
     if (model->NumRegImages() < 2) continue;
     registered += static_cast<int>(model->NumRegImages());
-    scenes->push_back(model);
+    scenes->push_back({model, false, model->NumRegImages(), {}});
     ++added;
   }
   record_({"images left over", leftovers, registered, SecondsSince(start), true,

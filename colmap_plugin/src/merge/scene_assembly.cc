@@ -1,11 +1,13 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "controllers/scene_assembly.h"
+#include "merge/scene_assembly.h"
 
+#include <algorithm>
 #include <chrono>
 #include <unordered_set>
 
-#include "controllers/tmr_mapper_support.h"
-#include "sfm/model_merging.h"
+#include "controllers/tmr_mapper_options.h"
+#include "merge/model_merging.h"
+#include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
@@ -23,27 +25,21 @@ std::string DescribeFit(const ModelAlignment& a) {
          std::to_string(a.num_shared_tracks) + " shared tracks fit";
 }
 
-// Each scene's registered images.
-std::unordered_map<const colmap::Reconstruction*,
-                   std::unordered_set<colmap::image_t>>
-ImagesByScene(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) {
-  std::unordered_map<const colmap::Reconstruction*,
-                     std::unordered_set<colmap::image_t>>
-      held;
-  for (const auto& scene : scenes) {
-    const std::vector<colmap::image_t>& ids = scene->RegImageIds();
-    held[scene.get()].insert(ids.begin(), ids.end());
+// Each scene remembers its registered images (AssemblyScene::held).
+void HoldImages(std::vector<AssemblyScene>* scenes) {
+  for (AssemblyScene& scene : *scenes) {
+    const std::vector<colmap::image_t>& ids = scene.model->RegImageIds();
+    scene.held = {ids.begin(), ids.end()};
   }
-  return held;
 }
 
 }  // namespace
 
-void SortBySize(std::vector<std::shared_ptr<colmap::Reconstruction>>* models) {
-  std::sort(models->begin(), models->end(), [](const auto& a, const auto& b) {
-    return a->NumRegImages() > b->NumRegImages();
-  });
+void SortBySize(std::vector<AssemblyScene>* scenes) {
+  std::sort(scenes->begin(), scenes->end(),
+            [](const AssemblyScene& a, const AssemblyScene& b) {
+              return a.model->NumRegImages() > b.model->NumRegImages();
+            });
 }
 
 SceneAssembler::SceneAssembler(
@@ -68,40 +64,42 @@ SceneAssembler::SceneAssembler(
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
-  std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
-      MergeScenes(models);
+  Scenes scenes;
+  for (const auto& model : models)
+    scenes.push_back({model, false, model->NumRegImages(), {}});
+  MergeScenes(&scenes);
   if (o_.merge.complete_models) {
     CompleteScenes(&scenes);
     // New models from what is left may overlap the others.
-    if (ReconstructLeftovers(&scenes)) scenes = MergeScenes(scenes);
+    if (ReconstructLeftovers(&scenes)) MergeScenes(&scenes);
   }
-  RefineMergedScenes(scenes);
+  RefineMergedScenes(&scenes);
   // A model whose shared tracks disagreed with a scene of unrefined merges
   // (loops not yet closed) gets a second try against the refined scene
   // (docs/mapper.md, step 8).
   if (scenes.size() > 1) {
-    const auto held = ImagesByScene(scenes);
+    HoldImages(&scenes);
     const size_t before = scenes.size();
-    scenes = MergeScenes(scenes);
-    if (scenes.size() < before) RefineLateMerges(scenes, held);
+    MergeScenes(&scenes);
+    if (scenes.size() < before) RefineLateMerges(&scenes);
   }
   // A last completion on the refined scenes, whose retriangulation made
   // points that photos left out before can register on (tmr_synth plazas of
   // 960: 4 photos of a plaza whose neighbours joined by the last merges;
   // `colmap image_registrator` registered them on the final model).
   if (o_.merge.complete_models) {
-    const auto held = ImagesByScene(scenes);
+    HoldImages(&scenes);
     CompleteScenes(&scenes, /*keep_unless_grown=*/true);
-    RefineLateMerges(scenes, held);
+    RefineLateMerges(&scenes);
   }
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
   const size_t min_size = MinModelSize();
   SortBySize(&scenes);
   int dropped = 0, images = 0;
-  while (scenes.size() > 1 && scenes.back()->NumRegImages() < min_size) {
+  while (scenes.size() > 1 && scenes.back().model->NumRegImages() < min_size) {
     ++dropped;
-    images += static_cast<int>(scenes.back()->NumRegImages());
+    images += static_cast<int>(scenes.back().model->NumRegImages());
     scenes.pop_back();  // largest first
   }
   if (dropped > 0) {
@@ -109,7 +107,9 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
                  std::to_string(min_size) + " images (Mapper.min_model_size)",
              images, 0, 0.0, true, "their images stay unregistered"});
   }
-  return scenes;
+  std::vector<std::shared_ptr<colmap::Reconstruction>> result;
+  for (const AssemblyScene& scene : scenes) result.push_back(scene.model);
+  return result;
 }
 
 size_t SceneAssembler::MinModelSize() const {
@@ -117,103 +117,90 @@ size_t SceneAssembler::MinModelSize() const {
                           o_.mapper.min_model_size);
 }
 
-std::vector<std::shared_ptr<colmap::Reconstruction>>
-SceneAssembler::MergeScenes(
-    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters) const {
-  SortBySize(&clusters);
-  // Each cluster model joins the first scene it aligns with, the most
-  // strongly linked first; repeat until nothing merges, since a merge can
-  // create new overlaps.
+void SceneAssembler::MergeScenes(Scenes* scenes) const {
+  SortBySize(scenes);
+  // Each model joins the first scene it aligns with, the most strongly
+  // linked first; repeat until nothing merges, since a merge can create
+  // new overlaps.
   bool merged = true;
   while (merged) {
     merged = false;
-    std::vector<std::shared_ptr<colmap::Reconstruction>> next;
-    for (const auto& model : clusters) {
+    Scenes next;
+    for (AssemblyScene& candidate : *scenes) {
+      const colmap::Reconstruction& model = *candidate.model;
       bool joined = false;
       // A model below the smallest that COLMAP keeps is too weak to move
       // as one block (docs/mapper.md, step 4: three photos with wrong focal
       // lengths ended far away). Where models are completed, its photos are
       // registered one by one instead (CompleteScenes).
       const bool too_small =
-          o_.merge.complete_models && model->NumRegImages() < MinModelSize();
-      for (const auto& scene :
-           too_small ? std::vector<std::shared_ptr<colmap::Reconstruction>>()
-                     : LinkedScenes(*model, next)) {
+          o_.merge.complete_models && model.NumRegImages() < MinModelSize();
+      for (const int s :
+           too_small ? std::vector<int>() : LinkedScenes(model, next)) {
+        AssemblyScene& scene = next[s];
         const auto start = Clock::now();
-        const ModelAlignment a = Align(*scene, *model);
+        const ModelAlignment a = Align(*scene.model, model);
         TmrTaskReport task{"merge a model of " +
-                               std::to_string(model->NumRegImages()) +
+                               std::to_string(model.NumRegImages()) +
                                " images into a scene of " +
-                               std::to_string(scene->NumRegImages()),
-                           static_cast<int>(model->NumRegImages()),
+                               std::to_string(scene.model->NumRegImages()),
+                           static_cast<int>(model.NumRegImages()),
                            0,
                            0.0,
                            a.success,
                            a.success ? DescribeFit(a) : a.reason};
         if (a.success) {
-          AppendReconstruction(*model, a.target_from_source, scene.get());
-          unrefined_.insert(scene.get());
-          task.num_registered = static_cast<int>(scene->NumRegImages());
+          AppendReconstruction(model, a.target_from_source, scene.model.get());
+          scene.unrefined = true;
+          task.num_registered = static_cast<int>(scene.model->NumRegImages());
         }
         task.seconds = SecondsSince(start);
         record_(task);
         if (a.success) {
-          // The model is part of the scene now and may be freed: no record
-          // of it may outlive it (the sets are keyed by address).
-          unrefined_.erase(model.get());
-          refined_size_.erase(model.get());
-          if (scene->NumRegImages() >=
-              o_.refinement.growth * refined_size_[scene.get()])
-            Refine(scene, /*while_merging=*/true);
+          if (scene.model->NumRegImages() >=
+              o_.refinement.growth * scene.refined_size)
+            Refine(&scene, /*while_merging=*/true);
           joined = merged = true;
           break;
         }
       }
-      if (!joined) {
-        refined_size_.emplace(model.get(), model->NumRegImages());
-        next.push_back(model);
-      }
+      if (!joined) next.push_back(std::move(candidate));
     }
-    clusters = std::move(next);
-    SortBySize(&clusters);
-  }
-  return clusters;
-}
-
-void SceneAssembler::RefineMergedScenes(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes) const {
-  for (const auto& scene : scenes) {
-    if (unrefined_.count(scene.get())) Refine(scene, /*while_merging=*/false);
+    *scenes = std::move(next);
+    SortBySize(scenes);
   }
 }
 
-void SceneAssembler::RefineLateMerges(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
-    const std::unordered_map<const colmap::Reconstruction*,
-                             std::unordered_set<colmap::image_t>>& held) const {
-  for (const auto& scene : scenes) {
-    if (!unrefined_.count(scene.get())) continue;
-    const std::unordered_set<colmap::image_t>& before = held.at(scene.get());
+void SceneAssembler::RefineMergedScenes(Scenes* scenes) const {
+  for (AssemblyScene& scene : *scenes) {
+    if (scene.unrefined) Refine(&scene, /*while_merging=*/false);
+  }
+}
+
+void SceneAssembler::RefineLateMerges(Scenes* scenes) const {
+  for (AssemblyScene& scene : *scenes) {
+    if (!scene.unrefined) continue;
     std::vector<colmap::image_t> joined;
-    for (const colmap::image_t id : scene->RegImageIds())
-      if (!before.count(id)) joined.push_back(id);
-    if (scene->NumRegImages() >= kFullAdjustmentGrowth * before.size())
+    for (const colmap::image_t id : scene.model->RegImageIds())
+      if (!scene.held.count(id)) joined.push_back(id);
+    if (scene.model->NumRegImages() >=
+        kFullAdjustmentGrowth * scene.held.size())
       joined.clear();  // a full adjustment
-    Refine(scene, /*while_merging=*/false, joined);
+    Refine(&scene, /*while_merging=*/false, joined);
   }
 }
 
 void SceneAssembler::Refine(
-    const std::shared_ptr<colmap::Reconstruction>& scene, bool while_merging,
+    AssemblyScene* scene, bool while_merging,
     const std::vector<colmap::image_t>& only_images) const {
   const auto start = Clock::now();
   MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
   adjustment.only_images = only_images;
   adjustment.adjust_after_last_change = !while_merging && only_images.empty();
   const std::string report = RefineMergedModel(
-      cache_, ColmapOptions(o_, num_threads_), adjustment, scene);
+      cache_, ColmapOptions(o_, num_threads_), adjustment, scene->model);
   ReleaseFreedMemory();
-  const int images = static_cast<int>(scene->NumRegImages());
+  const int images = static_cast<int>(scene->model->NumRegImages());
   const bool full =
       adjustment.longest_tracks_per_image == 0 && only_images.empty();
   record_({full                  ? "refine merged model"
@@ -221,8 +208,8 @@ void SceneAssembler::Refine(
                                  : "refine late merge",
            images, images, SecondsSince(start), true,
            "tracks merged, global bundle adjustment: " + report});
-  if (full) unrefined_.erase(scene.get());
-  refined_size_[scene.get()] = scene->NumRegImages();
+  if (full) scene->unrefined = false;
+  scene->refined_size = scene->model->NumRegImages();
 }
 
 }  // namespace tmr

@@ -1,5 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "io/sqlite_connection.h"
+#include "tmr/io/sqlite.h"
+
+#include <sqlite3.h>
 
 #include <filesystem>
 #include <string_view>
@@ -7,14 +9,30 @@
 #include "tmr/io/database_reader.h"
 
 namespace tmr {
-namespace internal {
 
-ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
+SqliteDatabase::SqliteDatabase(const std::string& path, Mode mode,
+                               int busy_timeout_ms)
+    : path_(path), busy_timeout_ms_(busy_timeout_ms) {
+  if (mode == Mode::kReadOnly) {
+    OpenReadOnly();
+    return;
+  }
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(path, ec))
+    Fail("is a directory, not a file");
+  if (mode == Mode::kReadWrite && !std::filesystem::exists(path, ec))
+    Fail("no such file");
+  Open(path, SQLITE_OPEN_READWRITE |
+                 (mode == Mode::kCreate ? SQLITE_OPEN_CREATE : 0));
+}
+
+void SqliteDatabase::OpenReadOnly() {
+  constexpr int kFlags = SQLITE_OPEN_READONLY | SQLITE_OPEN_URI;
+  std::error_code ec;
+  const auto status = std::filesystem::status(path_, ec);
   if (!std::filesystem::exists(status)) Fail("no such file");
   if (std::filesystem::is_directory(status)) Fail("is a directory, not a file");
-  Open(ReadOnlySqliteUri(path));
+  Open(ReadOnlySqliteUri(path_), kFlags);
   // A throwing constructor runs no destructor: close the handle here.
   try {
     // A database with a -wal file on a read-only folder cannot be read
@@ -26,7 +44,7 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
     } catch (const DatabaseError&) {
       const int code = sqlite3_errcode(db_);
       if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
-      const std::filesystem::path wal = path + "-wal";
+      const std::filesystem::path wal = path_ + "-wal";
       std::error_code wal_ec;
       if (std::filesystem::exists(wal, wal_ec) &&
           (!std::filesystem::is_regular_file(wal, wal_ec) ||
@@ -37,7 +55,7 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
       }
       sqlite3_close(db_);
       db_ = nullptr;
-      Open(ReadOnlySqliteUri(path, /*force_immutable=*/true));
+      Open(ReadOnlySqliteUri(path_, /*force_immutable=*/true), kFlags);
     }
   } catch (...) {
     sqlite3_close(db_);
@@ -46,40 +64,50 @@ ReadOnlySqlite::ReadOnlySqlite(const std::string& path) : path_(path) {
   }
 }
 
-ReadOnlySqlite::~ReadOnlySqlite() { sqlite3_close(db_); }
+SqliteDatabase::~SqliteDatabase() { sqlite3_close(db_); }
 
-void ReadOnlySqlite::Open(const std::string& uri) {
-  const int rc = sqlite3_open_v2(
-      uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
+void SqliteDatabase::Open(const std::string& uri, int flags) {
+  const int rc = sqlite3_open_v2(uri.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close(db_);
     db_ = nullptr;
     Fail("cannot open: " + message);
   }
-  sqlite3_busy_timeout(db_, 10000);
+  sqlite3_busy_timeout(db_, busy_timeout_ms_);
 }
 
-void ReadOnlySqlite::Fail(const std::string& problem) const {
+void SqliteDatabase::Execute(const std::string& sql) const {
+  char* message = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
+    const std::string problem = message ? message : sqlite3_errmsg(db_);
+    sqlite3_free(message);
+    Fail(problem);
+  }
+}
+
+void SqliteDatabase::Fail(const std::string& problem) const {
   throw DatabaseError("database '" + path_ + "': " + problem);
 }
 
-bool ReadOnlySqlite::HasTable(const std::string& table) const {
-  Statement stmt(*this,
-                 "SELECT 1 FROM sqlite_master WHERE type='table' AND name=?");
+bool SqliteDatabase::HasTable(const std::string& table) const {
+  SqliteStatement stmt(
+      *this, "SELECT 1 FROM sqlite_master WHERE type='table' AND name=?");
   stmt.BindText(1, table);
   return stmt.Step();
 }
 
-bool ReadOnlySqlite::HasColumn(const std::string& table,
+bool SqliteDatabase::HasColumn(const std::string& table,
                                const std::string& column) const {
-  Statement stmt(*this, "SELECT 1 FROM pragma_table_info(?) WHERE name=?");
+  SqliteStatement stmt(*this,
+                       "SELECT 1 FROM pragma_table_info(?) WHERE name=?");
   stmt.BindText(1, table);
   stmt.BindText(2, column);
   return stmt.Step();
 }
 
-Statement::Statement(const ReadOnlySqlite& db, const std::string& sql)
+SqliteStatement::SqliteStatement(const SqliteDatabase& db,
+                                 const std::string& sql)
     : db_(db) {
   if (sqlite3_prepare_v2(db.handle(), sql.c_str(), -1, &stmt_, nullptr) !=
       SQLITE_OK) {
@@ -87,45 +115,43 @@ Statement::Statement(const ReadOnlySqlite& db, const std::string& sql)
   }
 }
 
-Statement::~Statement() { sqlite3_finalize(stmt_); }
+SqliteStatement::~SqliteStatement() { sqlite3_finalize(stmt_); }
 
-void Statement::BindInt(int index, int64_t value) {
+void SqliteStatement::BindInt(int index, int64_t value) {
   sqlite3_bind_int64(stmt_, index, value);
 }
 
-void Statement::BindText(int index, const std::string& value) {
+void SqliteStatement::BindText(int index, const std::string& value) {
   sqlite3_bind_text(stmt_, index, value.c_str(), -1, SQLITE_TRANSIENT);
 }
 
-bool Statement::Step() {
+bool SqliteStatement::Step() {
   const int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
   db_.Fail(sqlite3_errmsg(db_.handle()));
 }
 
-int64_t Statement::Int(int column) const {
+int64_t SqliteStatement::Int(int column) const {
   return sqlite3_column_int64(stmt_, column);
 }
 
-std::string Statement::Text(int column) const {
+std::string SqliteStatement::Text(int column) const {
   const auto* text = sqlite3_column_text(stmt_, column);
   return text ? reinterpret_cast<const char*>(text) : "";
 }
 
-const void* Statement::Blob(int column) const {
+const void* SqliteStatement::Blob(int column) const {
   return sqlite3_column_blob(stmt_, column);
 }
 
-int Statement::BlobBytes(int column) const {
+int SqliteStatement::BlobBytes(int column) const {
   return sqlite3_column_bytes(stmt_, column);
 }
 
-bool Statement::IsNull(int column) const {
+bool SqliteStatement::IsNull(int column) const {
   return sqlite3_column_type(stmt_, column) == SQLITE_NULL;
 }
-
-}  // namespace internal
 
 std::string ReadOnlySqliteUri(const std::string& path, bool force_immutable) {
   std::string uri = "file:";

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "sfm/registration_alignment.h"
+#include "merge/registration_alignment.h"
 
 #include <ceres/ceres.h>
 #include <colmap/estimators/pose.h>
@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sfm/similarity_reprojection_cost.h"
+#include "merge/similarity_reprojection_cost.h"
 
 namespace tmr {
 namespace {

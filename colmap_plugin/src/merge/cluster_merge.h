@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sfm/model_merging.h"
+#include "merge/model_merging.h"
 
 namespace tmr {
 
