@@ -150,13 +150,13 @@ TEST_F(DatabaseSchemasTest, Colmap38SchemaGivesTheSamePartitionAndModels) {
   ExecSql(v38, std::string(kColmap38Schema) + "ATTACH DATABASE '" +
                    ReadOnlySqliteUri(Colmap4Database().string()) + "' AS v4;" +
                    kCopyAs38 + "DETACH DATABASE v4;");
-  const std::string bytes = ReadFileBytes(v38);
+  const std::string bytes = ReadFileToString(v38);
 
   EXPECT_EQ(PartitionJson(v38), PartitionJson(Colmap4Database()));
   Map(Colmap4Database(), *scene_ / "out_v4");
   Map(v38, *scene_ / "out_v38");
   ExpectSameModels(*scene_ / "out_v4", *scene_ / "out_v38");
-  EXPECT_EQ(ReadFileBytes(v38), bytes);
+  EXPECT_EQ(ReadFileToString(v38), bytes);
 }
 
 // A COLMAP 4 database left in WAL mode with its verified pairs only in the
@@ -185,16 +185,16 @@ TEST_F(DatabaseSchemasTest, WalDatabaseWithPendingWritesIsReadThroughTheWal) {
                 fs::copy_options::overwrite_existing);
   open.reset();
   const fs::path wal_db = copy / "database.db";
-  const std::string bytes = ReadFileBytes(wal_db);
-  const std::string wal_bytes = ReadFileBytes(copy / "database.db-wal");
+  const std::string bytes = ReadFileToString(wal_db);
+  const std::string wal_bytes = ReadFileToString(copy / "database.db-wal");
   ASSERT_GT(wal_bytes.size(), 0u);
 
   EXPECT_EQ(PartitionJson(wal_db), PartitionJson(Colmap4Database()));
   Map(Colmap4Database(), *scene_ / "out_v4_for_wal");
   Map(wal_db, *scene_ / "out_wal");
   ExpectSameModels(*scene_ / "out_v4_for_wal", *scene_ / "out_wal");
-  EXPECT_EQ(ReadFileBytes(wal_db), bytes);
-  EXPECT_EQ(ReadFileBytes(copy / "database.db-wal"), wal_bytes);
+  EXPECT_EQ(ReadFileToString(wal_db), bytes);
+  EXPECT_EQ(ReadFileToString(copy / "database.db-wal"), wal_bytes);
 }
 
 // COLMAP's synthetic dataset with two rigs of two cameras each: tmr says in
@@ -217,7 +217,7 @@ TEST_F(DatabaseSchemasTest, MultiCameraRigsAreMappedAsIndependentCameras) {
     colmap::SynthesizeDataset(options, &truth, db.get());
     ASSERT_EQ(db->NumRigs(), 2u);
   }
-  const std::string bytes = ReadFileBytes(database);
+  const std::string bytes = ReadFileToString(database);
   const std::vector<std::string> lines = Map(database, dir / "out");
   int rig_lines = 0;
   for (const std::string& line : lines) {
@@ -227,7 +227,7 @@ TEST_F(DatabaseSchemasTest, MultiCameraRigsAreMappedAsIndependentCameras) {
   colmap::Reconstruction model;
   model.ReadBinary(dir / "out" / "0");
   EXPECT_GE(model.NumRegImages(), 44u);  // of 48
-  EXPECT_EQ(ReadFileBytes(database), bytes);
+  EXPECT_EQ(ReadFileToString(database), bytes);
 }
 
 }  // namespace

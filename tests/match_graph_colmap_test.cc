@@ -165,10 +165,10 @@ TEST_F(MatchGraphColmapTest, OptionsChangeWhichPairsCount) {
 
 TEST_F(MatchGraphColmapTest, DatabaseIsByteIdenticalAfterReading) {
   WriteHandMadeDatabase();
-  const std::string before = ReadFileBytes(path_);
+  const std::string before = ReadFileToString(path_);
   const std::set<std::string> files_before = ListDirectory(dir_);
   ReadMatchGraph(path_.string());
-  EXPECT_EQ(ReadFileBytes(path_), before);
+  EXPECT_EQ(ReadFileToString(path_), before);
   EXPECT_EQ(ListDirectory(dir_), files_before);
 }
 
@@ -284,7 +284,7 @@ class CorruptDatabaseTest : public MatchGraphColmapTest {
   void ExpectError(const std::string& sql, const std::string& problem) {
     WriteHandMadeDatabase();
     ExecSql(path_, sql);
-    const std::string before = ReadFileBytes(path_);
+    const std::string before = ReadFileToString(path_);
     try {
       ReadMatchGraph(path_.string());
       FAIL() << "no error after " << sql;
@@ -293,7 +293,7 @@ class CorruptDatabaseTest : public MatchGraphColmapTest {
       EXPECT_NE(message.find(path_.string()), std::string::npos) << message;
       EXPECT_NE(message.find(problem), std::string::npos) << message;
     }
-    EXPECT_EQ(ReadFileBytes(path_), before);
+    EXPECT_EQ(ReadFileToString(path_), before);
   }
   // pair_id of images 1 and 2.
   static constexpr int64_t kPair12 = 2147483647LL + 2;

@@ -82,14 +82,14 @@ TEST_F(SyntheticSceneTest, SameSeedWritesByteIdenticalDatabase) {
   options.seed = 42;
   Write(options, "a");
   Write(options, "b");
-  EXPECT_EQ(ReadFileBytes(Db("a")), ReadFileBytes(Db("b")));
+  EXPECT_EQ(ReadFileToString(Db("a")), ReadFileToString(Db("b")));
   for (const char* file : {"cameras.bin", "images.bin", "points3D.bin"}) {
-    EXPECT_EQ(ReadFileBytes(fs::path(Gt("a")) / file),
-              ReadFileBytes(fs::path(Gt("b")) / file));
+    EXPECT_EQ(ReadFileToString(fs::path(Gt("a")) / file),
+              ReadFileToString(fs::path(Gt("b")) / file));
   }
   options.seed = 43;
   Write(options, "c");
-  EXPECT_NE(ReadFileBytes(Db("a")), ReadFileBytes(Db("c")));
+  EXPECT_NE(ReadFileToString(Db("a")), ReadFileToString(Db("c")));
 }
 
 TEST_F(SyntheticSceneTest, PlacesLinkedWeaklyLinkedAndUnlinked) {

@@ -1,27 +1,19 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// Files and SQL for the integration tests: reading a file's bytes (an input
-// must stay byte-identical) and running SQL on a database file (to make
-// other schemas, corrupt rows or a WAL left behind).
+// Files and SQL for the integration tests: a file's bytes (an input must
+// stay byte-identical: ReadFileToString, tmr/io/atomic_file.h) and running
+// SQL on a database file (to make other schemas, corrupt rows or a WAL left
+// behind).
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 
+#include "tmr/io/atomic_file.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/io/sqlite.h"
 
 namespace tmr {
-
-// The bytes of a file ("" when it cannot be read).
-inline std::string ReadFileBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
 
 // Runs `sql` on a read-write connection to `path` (created when missing)
 // and hands the connection back: a WAL database keeps its -wal file until

@@ -61,13 +61,6 @@ std::string RunFingerprint(const TmrMapperOptions& options,
   return id.str();
 }
 
-std::string ReadFileToString(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream content;
-  content << in.rdbuf();
-  return in ? content.str() : std::string();
-}
-
 TaskWorkspace::TaskWorkspace(fs::path folder) : folder_(std::move(folder)) {}
 
 bool TaskWorkspace::Open(const std::string& run_id, bool resume) {

@@ -27,9 +27,6 @@ uint64_t DatabaseContentHash(const std::string& path);
 std::string RunFingerprint(const TmrMapperOptions& options,
                            const std::string& tree_json);
 
-// The content of a file; empty when it cannot be read.
-std::string ReadFileToString(const std::string& path);
-
 // The work folder of a tmr_mapper run (OUT/.tmr_work): one task database
 // and one model per kernel and leaf task, and a result record per finished
 // task, so that a rerun of a killed run reuses what it finished.

@@ -10,6 +10,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "tmr/io/atomic_file.h"
+
 namespace tmr {
 namespace {
 

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace tmr {
 
@@ -17,6 +18,13 @@ bool WriteFileAtomically(const std::string& path, const std::string& content) {
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);
   return !ec;
+}
+
+std::string ReadFileToString(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream content;
+  content << in.rdbuf();
+  return in ? content.str() : std::string();
 }
 
 }  // namespace tmr

@@ -4,7 +4,6 @@
 #include <sqlite3.h>
 
 #include <filesystem>
-#include <string_view>
 
 #include "tmr/io/database_reader.h"
 

@@ -9,4 +9,7 @@ namespace tmr {
 // interrupted run never leaves a half-written file. False on failure.
 bool WriteFileAtomically(const std::string& path, const std::string& content);
 
+// The content of a file; empty when it cannot be read.
+std::string ReadFileToString(const std::string& path);
+
 }  // namespace tmr
