@@ -22,7 +22,8 @@
 # paper's kernel search and image clustering) picks the tools and their order; TMR_ARGS adds options to
 # tmr_mapper (e.g. "--Tmr.keep_work 1"); STOCK_CAP=SECONDS stops `colmap
 # mapper` after that long and reports the images it had registered (a
-# lower bound on its time, for scenes where it takes hours).
+# lower bound on its time, for scenes where it takes hours); GLOBAL_CAP=SECONDS
+# does the same for `colmap global_mapper` (reports the stage it was in).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -123,9 +124,17 @@ for scene in "${scenes[@]}"; do
           --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
           --Mapper.num_threads "$THREADS") ;;
       colmap_global)
-        read -r wall peak < <(timed "$out.log" "$COLMAP" global_mapper \
+        read -r wall peak < <(timed "$out.log" ${GLOBAL_CAP:+timeout -s INT "$GLOBAL_CAP"} \
+          "$COLMAP" global_mapper \
           --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
-          --GlobalMapper.num_threads "$THREADS") ;;
+          --GlobalMapper.num_threads "$THREADS")
+        if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
+          stage=$(grep -o '=== [^=]* ===' "$out.log" | tail -1 || true)
+          echo "$scene,$images,colmap_global_capped,$wall,$peak,,,0,,,0," >>"$OUT/results.csv"
+          printf "%-10s %-22s %8s s %7s MiB   stopped at the cap in %s\n" \
+            "$scene" "colmap_global" "$wall" "$peak" "${stage:-?}"
+          continue
+        fi ;;
       tmr_mapper|tmr_mapper_paper)
         # tmr_mapper_paper: the paper's kernel search and image clustering
         # (layers on the whole graph, single-pair links crossed).

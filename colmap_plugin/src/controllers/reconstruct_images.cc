@@ -4,7 +4,6 @@
 #include <colmap/controllers/feature_extraction.h>
 #include <colmap/controllers/feature_matching.h>
 #include <colmap/feature/sift.h>
-#include <colmap/sensor/models.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "sfm/forward_motion.h"
 #include "tmr/io/atomic_file.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/io/sqlite.h"
@@ -89,64 +89,110 @@ void RunWithProgress(colmap::Thread* thread, const std::string& what,
   thread->Wait();
 }
 
-}  // namespace
-
-TmrMapperOptions ReconstructImagesOptions::MapperOptions() const {
-  TmrMapperOptions o = mapper;
-  o.database_path = (fs::path(workspace_path) / "database.db").string();
-  o.output_path = (fs::path(workspace_path) / "sparse").string();
-  o.image_path = image_path;
-  o.num_threads = num_threads;
-  return o;
+int NumRegistered(const TmrMapperReport& report) {
+  int registered = 0;
+  for (const int size : report.model_sizes) registered += size;
+  return registered;
 }
 
-void ReconstructImagesOptions::AddTo(OptionTable* t) {
-  t->Add("num_threads", &num_threads, "threads of every stage (-1: all cores)");
-  t->Add("matcher", &matcher,
-         "auto | exhaustive | sequential (file-name order) | spatial (EXIF "
-         "GPS)");
-  t->Add("max_exhaustive_images", &max_exhaustive_images,
-         "auto: exhaustive up to this many images, sequential above")
-      .AtLeast(2);
-  t->Add("ImageReader.camera_model", &camera_model, "COLMAP camera model");
-  t->Add("ImageReader.single_camera", &single_camera,
-         "one camera for all photos");
-  t->Add("FeatureExtraction.max_image_size", &max_image_size,
-         "photos are downscaled to this size for SIFT")
-      .AtLeast(16);
-  t->Add("SiftExtraction.max_num_features", &max_num_features,
-         "SIFT features per photo")
-      .AtLeast(1);
-  t->Add("FeatureMatching.guided_matching", &guided_matching,
-         "guided matching after verification");
-  t->Add("SequentialMatching.overlap", &sequential_overlap,
-         "neighbours each photo is matched with (sequential)")
-      .AtLeast(1);
-  t->Add("SpatialMatching.max_num_neighbors", &spatial_max_num_neighbors,
-         "GPS neighbours each photo is matched with (spatial)")
-      .AtLeast(1);
-  mapper.AddTo(t);
+int LargestModel(const TmrMapperReport& report) {
+  return report.model_sizes.empty() ? 0 : report.model_sizes.front();
 }
 
-bool ReconstructImagesOptions::Check(std::string* error) const {
-  auto fail = [error](const std::string& message) {
-    if (error) *error = message;
+std::string SettingsName(bool forward) {
+  return forward ? "forward-motion" : "COLMAP's";
+}
+
+// Replaces the folder `target` with `source` (both complete model folders).
+bool ReplaceFolder(const std::string& source, const std::string& target,
+                   std::string* error) {
+  std::error_code ec;
+  const std::string old = target + ".old";
+  fs::remove_all(old, ec);
+  if (!ec && fs::exists(target)) fs::rename(target, old, ec);
+  if (!ec) fs::rename(source, target, ec);
+  if (ec) {
+    *error = "cannot move '" + source + "' to '" + target + "': " + ec.message();
     return false;
-  };
-  if (image_path.empty()) return fail("no image folder given");
-  if (workspace_path.empty()) return fail("no workspace folder given");
-  if (matcher != "auto" && matcher != "exhaustive" && matcher != "sequential" &&
-      matcher != "spatial") {
-    return fail(
-        "--matcher must be auto, exhaustive, sequential or spatial, not '" +
-        matcher + "'");
   }
-  if (!colmap::ExistsCameraModelWithName(camera_model))
-    return fail("unknown camera model '" + camera_model + "'");
-  if (num_threads == 0 || num_threads < -1)
-    return fail("num_threads must be -1 or >= 1");
-  return CheckOptionRows(*this, error) && MapperOptions().Check(error);
+  fs::remove_all(old, ec);
+  return true;
 }
+
+// tmr_mapper with the mapper settings for how the photos were taken
+// (ReconstructImagesOptions::capture), and with capture "auto" a second
+// mapping with the other settings when the first registers fewer than half
+// the photos; the result with the larger largest model (then more
+// registered photos) is kept in mapper.output_path.
+bool MapPhotos(const ReconstructImagesOptions& options,
+               const TmrMapperOptions& mapper, ReconstructImagesReport* report,
+               std::string* error,
+               const std::function<void(const std::string&)>& progress) {
+  const ForwardMotionStats motion =
+      MeasureForwardMotion(*colmap::Database::Open(mapper.database_path),
+                           MapperPassThroughOptions().init_max_forward_motion);
+  report->num_cameras = motion.num_cameras;
+  report->num_cameras_with_exif_focal = motion.num_cameras_with_prior_focal;
+  report->num_motion_pairs = motion.num_pairs;
+  report->num_forward_pairs = motion.num_forward;
+  const bool keep_intrinsics =
+      motion.num_cameras > 0 &&
+      motion.num_cameras_with_prior_focal == motion.num_cameras;
+  const auto settings = [&](bool forward, const std::string& output_path) {
+    TmrMapperOptions o = mapper;
+    o.output_path = output_path;
+    if (forward) o.mapper = ForwardMotionMapperOptions(o.mapper, keep_intrinsics);
+    return o;
+  };
+  const bool forward = options.capture == "forward" ||
+                       (options.capture == "auto" && motion.MostlyForward());
+  if (progress) {
+    progress(std::to_string(motion.num_forward) + " of " +
+             std::to_string(motion.num_pairs) +
+             " verified pairs move along the viewing direction: mapping with " +
+             SettingsName(forward) + " settings");
+  }
+  if (!RunTmrMapper(settings(forward, mapper.output_path), &report->mapper,
+                    error, progress)) {
+    return false;
+  }
+  report->capture = forward ? "forward" : "general";
+  const int registered = NumRegistered(report->mapper);
+  if (options.capture != "auto" || 2 * registered >= report->num_images)
+    return true;
+
+  report->second_pass = true;
+  report->first_pass_registered = registered;
+  const std::string second_path = mapper.output_path + ".second";
+  std::error_code ec;
+  fs::remove_all(second_path, ec);
+  if (progress) {
+    progress("registered " + std::to_string(registered) + " of " +
+             std::to_string(report->num_images) + " photos: mapping again with " +
+             SettingsName(!forward) + " settings");
+  }
+  TmrMapperReport second;
+  std::string second_error;
+  const bool mapped =
+      RunTmrMapper(settings(!forward, second_path), &second, &second_error,
+                   progress);
+  if (mapped &&
+      (LargestModel(second) > LargestModel(report->mapper) ||
+       (LargestModel(second) == LargestModel(report->mapper) &&
+        NumRegistered(second) > registered))) {
+    if (!ReplaceFolder(second_path, mapper.output_path, error)) return false;
+    report->mapper = std::move(second);
+    report->capture = forward ? "general" : "forward";
+    report->kept_second_pass = true;
+  } else {
+    if (progress && !mapped)
+      progress("the second mapping failed: " + second_error);
+    fs::remove_all(second_path, ec);
+  }
+  return true;
+}
+
+}  // namespace
 
 bool RunReconstructImages(
     const ReconstructImagesOptions& options, ReconstructImagesReport* report,
@@ -191,6 +237,7 @@ bool RunReconstructImages(
     extraction.num_threads = options.num_threads;
     extraction.max_image_size = options.max_image_size;
     extraction.sift->max_num_features = options.max_num_features;
+    extraction.sift->estimate_affine_shape = options.estimate_affine_shape;
     say("extracting features of " + std::to_string(report->num_photos) +
         " photos");
     auto extractor =
@@ -263,7 +310,9 @@ bool RunReconstructImages(
   say("features in " + std::to_string(report->num_images) + " images, " +
       std::to_string(report->num_verified_pairs) + " verified pairs");
 
-  if (!RunTmrMapper(mapper, &report->mapper, error, progress)) return false;
+  const auto mapping_start = Clock::now();
+  if (!MapPhotos(options, mapper, report, error, progress)) return false;
+  report->mapping_seconds = SecondsSince(mapping_start);
 
   report->models.clear();
   for (size_t i = 0; i < report->mapper.model_sizes.size(); ++i) {
@@ -284,10 +333,30 @@ std::string ReconstructImagesSummary(const ReconstructImagesReport& report) {
   out << "photos: " << report.num_photos
       << ", with features: " << report.num_images << " ("
       << report.extraction_seconds << " s)\n"
+      << "cameras: " << report.num_cameras << " ("
+      << report.num_cameras_with_exif_focal
+      << " with an EXIF focal length; photos of the same EXIF make, model, "
+         "focal length and size share one)\n"
       << "verified pairs: " << report.num_verified_pairs << " ("
       << report.matcher << " matching, " << report.matching_seconds << " s)\n"
-      << "models: " << report.models.size() << " ("
-      << report.mapper.total_seconds << " s)\n";
+      << "motion: " << report.num_forward_pairs << " of "
+      << report.num_motion_pairs
+      << " verified pairs move along the viewing direction\n";
+  if (report.second_pass) {
+    const bool first_forward =
+        (report.capture == "forward") != report.kept_second_pass;
+    out << "mapping: " << SettingsName(first_forward)
+        << " settings registered " << report.first_pass_registered << " of "
+        << report.num_images << " photos; "
+        << SettingsName(!first_forward) << " settings "
+        << (report.kept_second_pass ? "did better: kept"
+                                    : "did not do better");
+  } else {
+    out << "mapping: " << SettingsName(report.capture == "forward")
+        << " settings";
+  }
+  out << "\nmodels: " << report.models.size() << " ("
+      << report.mapping_seconds << " s)\n";
   for (size_t i = 0; i < report.models.size(); ++i) {
     const ModelEvaluation& m = report.models[i];
     out << "  sparse/" << i << ": " << m.num_registered_images << " images, "

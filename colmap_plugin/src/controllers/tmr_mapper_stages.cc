@@ -353,6 +353,14 @@ bool TmrMapperStages::AssembleAndWrite(
       return Fail("cannot write model '" + path + "'", error);
     report->model_sizes.push_back(static_cast<int>(scenes[i]->NumRegImages()));
   }
+  // Models of an earlier run into the same folder that this one has no
+  // number for would read as part of its result.
+  for (size_t i = scenes.size();; ++i) {
+    const fs::path stale = fs::path(o_.output_path) / std::to_string(i);
+    std::error_code ec;
+    if (!fs::is_directory(stale, ec)) break;
+    fs::remove_all(stale, ec);
+  }
   report->weak_links = assembler.WeakLinks(scenes);
   if (progress) {
     progress("wrote " + std::to_string(scenes.size()) + " models to " +

@@ -21,10 +21,22 @@ struct ReconstructImagesOptions {
   // max_exhaustive_images photos, sequential above.
   std::string matcher = "auto";                // --matcher
   int max_exhaustive_images = 500;             // --max_exhaustive_images
+  // How the photos were taken, which picks COLMAP's mapper settings:
+  // "general" (COLMAP's), "forward" (moving straight ahead along the
+  // viewing direction: ForwardMotionMapperOptions) or "auto": forward when
+  // most verified pairs move forward, and when a first mapping registers
+  // fewer than half the photos, a second one with the other settings (the
+  // better result is kept).
+  std::string capture = "auto";                // --capture
   std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
   bool single_camera = false;                  // --ImageReader.single_camera
-  int max_image_size = 3200;           // --FeatureExtraction.max_image_size
+  // Extraction as `colmap automatic_reconstructor` (its default quality,
+  // "high") sets it.
+  int max_image_size = 2400;           // --FeatureExtraction.max_image_size
   int max_num_features = 8192;         // --SiftExtraction.max_num_features
+  bool estimate_affine_shape = true;   // --SiftExtraction.estimate_affine_shape
+  // automatic_reconstructor turns guided matching on; on the CPU it made
+  // matching 7.8 times slower for the same models (docs/reconstruct.md).
   bool guided_matching = false;        // --FeatureMatching.guided_matching
   int sequential_overlap = 10;         // --SequentialMatching.overlap
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
@@ -46,11 +58,28 @@ struct ReconstructImagesOptions {
 struct ReconstructImagesReport {
   int num_photos = 0;          // image files found in image_path
   int num_images = 0;          // images with features in the database
+  // Cameras in the database: COLMAP's image reader gives photos with the
+  // same EXIF make, model, focal length and size one camera, and every
+  // other photo its own.
+  int num_cameras = 0;
+  int num_cameras_with_exif_focal = 0;  // focal length prior from EXIF
   int num_verified_pairs = 0;  // pairs with verified two-view geometry
   std::string matcher;         // the matcher that ran
   double extraction_seconds = 0.0;
   double matching_seconds = 0.0;
-  TmrMapperReport mapper;
+  double mapping_seconds = 0.0;  // every mapping pass
+  // Verified pairs with a translation direction, and those moving along the
+  // viewing direction (MeasureForwardMotion).
+  int num_motion_pairs = 0;
+  int num_forward_pairs = 0;
+  std::string capture;  // the mapper settings of the kept models
+  // A second mapping (capture "auto", fewer than half the photos registered
+  // by the first): what the first registered, and whether the second's
+  // models were kept.
+  bool second_pass = false;
+  int first_pass_registered = 0;
+  bool kept_second_pass = false;
+  TmrMapperReport mapper;  // of the kept models
   std::vector<ModelEvaluation> models;  // statistics of sparse/0, 1, ...
 };
 
