@@ -10,13 +10,9 @@
 # The photos are read from DATA_DIR/SET, never copied; when they are absent
 # the test prints SKIPPED and counts as skipped.
 set(set_dir ${DATA_DIR}/${SET})
-if(NOT EXISTS ${set_dir}/images)
-  message(STATUS "SKIPPED: ${set_dir}/images not found (the real photo sets "
-                 "live in ../shared/data beside the checkout)")
-  return()
-endif()
-file(REMOVE_RECURSE ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
+skip_without_photos(${set_dir})
+file(REMOVE_RECURSE ${WORK_DIR})
 
 run(${TMR_RECONSTRUCT} ${set_dir}/images ${WORK_DIR} --num_threads 2
     --FeatureExtraction.max_image_size ${MAX_IMAGE_SIZE})

@@ -11,6 +11,16 @@ function(run)
   set(last_output "${out}" PARENT_SCOPE)
 endfunction()
 
+# skip_without_photos(SET_DIR): ends the calling script with SKIPPED (the
+# test counts as skipped) when SET_DIR/images is missing.
+macro(skip_without_photos set_dir)
+  if(NOT EXISTS ${set_dir}/images)
+    message(STATUS "SKIPPED: ${set_dir}/images not found (the real photo sets "
+                   "live in ../shared/data beside the checkout)")
+    return()
+  endif()
+endmacro()
+
 # largest_model(EVAL_JSON PREFIX): reads a tmr_eval JSON report and sets, in
 # the caller's scope, PREFIX_images (reference images), PREFIX_models,
 # PREFIX_registered and PREFIX_rotation (median rotation error, degrees) of
