@@ -109,7 +109,7 @@ bool ReplaceFolder(const std::string& source, const std::string& target,
   std::error_code ec;
   const std::string old = target + ".old";
   fs::remove_all(old, ec);
-  if (!ec && fs::exists(target)) fs::rename(target, old, ec);
+  if (!ec && fs::exists(target, ec)) fs::rename(target, old, ec);
   if (!ec) fs::rename(source, target, ec);
   if (ec) {
     *error = "cannot move '" + source + "' to '" + target + "': " + ec.message();
