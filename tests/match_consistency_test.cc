@@ -81,6 +81,32 @@ TEST_F(MatchConsistencyTest, AGroupPlacedWronglyIsInconsistent) {
   EXPECT_TRUE(unmoved.IsConsistent(options));
 }
 
+// Matches seen under less than the angle are set aside, not tested; with
+// angle 0 every match placed in front is tested.
+TEST_F(MatchConsistencyTest, LowAngleMatchesAreNotTested) {
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(Database());
+  const colmap::Reconstruction moved = MoveHalf(colmap::Rigid3d(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ())),
+      Eigen::Vector3d(1, -0.5, 0.2)));
+  MatchConsistencyOptions every;
+  every.min_triangulation_angle_deg = 0;
+  const MatchConsistency all = CheckMatchConsistency(moved, *database, every);
+  MatchConsistencyOptions wide;
+  wide.min_triangulation_angle_deg = 20;
+  const MatchConsistency some = CheckMatchConsistency(moved, *database, wide);
+  EXPECT_EQ(all.num_low_angle, 0);
+  EXPECT_GT(some.num_low_angle, 0);
+  EXPECT_EQ(some.num_low_angle + some.num_tested, all.num_tested);
+  EXPECT_LE(some.num_inconsistent, all.num_inconsistent);
+  EXPECT_EQ(some.num_matches, all.num_matches);
+  MatchConsistencyOptions bad;
+  bad.min_triangulation_angle_deg = 90;
+  std::string error;
+  EXPECT_FALSE(bad.Check(&error));
+  EXPECT_EQ(error, "min_triangulation_angle_deg must be in [0, 90)");
+}
+
 TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
   ModelEvaluationOptions options;
   options.database_path = Database();
@@ -88,6 +114,7 @@ TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
   const ModelEvaluation e = EvaluateModel("", (dir_ / "gt").string(), options);
   ASSERT_TRUE(e.match_consistency.has_value());
   EXPECT_TRUE(e.match_consistency->IsConsistent(MatchConsistencyOptions()));
+  EXPECT_TRUE(e.match_consistent);
   EXPECT_GT(e.match_consistency->num_matches, 10000);
   EXPECT_EQ(fs::last_write_time(Database()), before);
 }

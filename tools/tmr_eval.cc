@@ -87,7 +87,13 @@ int main(int argc, char** argv) {
           ->default_value(options.min_wrong_merge_images),
       "displaced images forming a rigid part that make a wrong merge")(
       "seed", po::value(&options.seed)->default_value(options.seed),
-      "RANSAC seed");
+      "RANSAC seed")(
+      "match_min_tri_angle",
+      po::value(&options.match_consistency.min_triangulation_angle_deg)
+          ->default_value(
+              options.match_consistency.min_triangulation_angle_deg),
+      "with --database_path: test only matches whose rays meet at this "
+      "angle (degrees) or more");
   po::variables_map vm;
   if (const auto exit_code =
           tmr::ParseCommandLine("tmr_eval", argc, argv, desc, &vm)) {

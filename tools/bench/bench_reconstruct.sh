@@ -56,7 +56,7 @@ if tool == "tmr_reconstruct":
         summary = ""
     nums = lambda pattern: float(re.search(pattern, summary).group(1)) if re.search(pattern, summary) else float("nan")
     extraction = nums(r"with features: \d+ \(([0-9.]+) s\)")
-    matching = nums(r"matching, ([0-9.]+) s\)")
+    matching = nums(r"matching[:,] .*?([0-9.]+) s\)")
     mapping = total - extraction - matching
 else:  # glog time stamps of automatic_reconstructor's stage headings
     stamps = {}

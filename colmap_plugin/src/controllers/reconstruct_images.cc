@@ -1,21 +1,19 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "tmr/colmap/reconstruct_images.h"
 
-#include <colmap/controllers/feature_extraction.h>
-#include <colmap/controllers/feature_matching.h>
-#include <colmap/feature/sift.h>
+#include <colmap/scene/database.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
-#include <thread>
 
+#include "controllers/controller_progress.h"
+#include "controllers/photo_extraction.h"
+#include "controllers/photo_matching.h"
 #include "sfm/forward_motion.h"
 #include "tmr/io/atomic_file.h"
-#include "tmr/io/database_reader.h"
-#include "tmr/io/sqlite.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -23,71 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-bool IsPhoto(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  for (const char* known :
-       {".jpg", ".jpeg", ".png", ".tif", ".tiff", ".bmp", ".ppm", ".pgm"}) {
-    if (ext == known) return true;
-  }
-  return false;
-}
-
-// Image files under `folder`, recursively (COLMAP's image reader reads
-// sub-folders too).
-int CountPhotos(const std::string& folder, std::string* error) {
-  std::error_code ec;
-  int count = 0;
-  for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end;
-       it.increment(ec)) {
-    if (it->is_regular_file(ec) && IsPhoto(it->path())) ++count;
-  }
-  if (ec) *error = "cannot read '" + folder + "': " + ec.message();
-  return count;
-}
-
-// One COUNT(*) on the workspace database while COLMAP may be writing it
-// (WAL journal: readers do not block the writer); -1 when it cannot be
-// read right now.
-int64_t CountRows(const std::string& database, const std::string& sql) {
-  try {
-    const SqliteDatabase db(database, SqliteDatabase::Mode::kReadOnly,
-                            /*busy_timeout_ms=*/1000);
-    SqliteStatement stmt(db, sql);
-    return stmt.Step() ? stmt.Int(0) : -1;
-  } catch (const DatabaseError&) {
-    return -1;
-  }
-}
-
-// Runs a COLMAP controller thread to its end; about every ten seconds
-// reports `count()` of `total` with a rate-based ETA.
-void RunWithProgress(colmap::Thread* thread, const std::string& what,
-                     const std::function<int64_t()>& count, int64_t total,
-                     const std::function<void(const std::string&)>& progress) {
-  const auto start = Clock::now();
-  const int64_t initial = std::max<int64_t>(0, count());
-  thread->Start();
-  auto last = start;
-  while (!thread->IsFinished()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    if (!progress || Clock::now() - last < std::chrono::seconds(10)) continue;
-    last = Clock::now();
-    const int64_t done = count();
-    if (done < 0) continue;
-    std::ostringstream line;
-    line << what << ": " << done << " of " << total;
-    const double seconds = SecondsSince(start);
-    if (done > initial && done < total) {
-      line << "; ETA " << std::fixed << std::setprecision(0)
-           << seconds / (done - initial) * (total - done) << " s";
-    }
-    progress(line.str());
-  }
-  thread->Wait();
-}
 
 int NumRegistered(const TmrMapperReport& report) {
   int registered = 0;
@@ -208,9 +141,9 @@ bool RunReconstructImages(
   if (!options.Check(error)) return false;
   if (!fs::is_directory(options.image_path))
     return fail("image folder '" + options.image_path + "' does not exist");
-  std::string list_error;
-  report->num_photos = CountPhotos(options.image_path, &list_error);
-  if (!list_error.empty()) return fail(list_error);
+  std::vector<std::string> photos;
+  if (!ListPhotos(options.image_path, &photos, error)) return false;
+  report->num_photos = static_cast<int>(photos.size());
   if (report->num_photos < 2) {
     return fail("found " + std::to_string(report->num_photos) +
                 " photo(s) in '" + options.image_path + "'; need at least 2");
@@ -224,30 +157,7 @@ bool RunReconstructImages(
   const TmrMapperOptions mapper = options.MapperOptions();
   const std::string& database = mapper.database_path;
 
-  // Features: COLMAP skips images already in the database.
-  {
-    const auto start = Clock::now();
-    colmap::ImageReaderOptions reader;
-    reader.image_path = options.image_path;
-    reader.camera_model = options.camera_model;
-    reader.single_camera = options.single_camera;
-    colmap::FeatureExtractionOptions extraction(
-        colmap::FeatureExtractorType::SIFT);
-    extraction.use_gpu = false;
-    extraction.num_threads = options.num_threads;
-    extraction.max_image_size = options.max_image_size;
-    extraction.sift->max_num_features = options.max_num_features;
-    extraction.sift->estimate_affine_shape = options.estimate_affine_shape;
-    say("extracting features of " + std::to_string(report->num_photos) +
-        " photos");
-    auto extractor =
-        colmap::CreateFeatureExtractorController(database, reader, extraction);
-    RunWithProgress(
-        extractor.get(), "features",
-        [&] { return CountRows(database, "SELECT COUNT(*) FROM descriptors"); },
-        report->num_photos, progress);
-    report->extraction_seconds = SecondsSince(start);
-  }
+  ExtractPhotoFeatures(options, photos, report, progress);
   report->num_images = static_cast<int>(
       CountRows(database, "SELECT COUNT(*) FROM descriptors WHERE rows > 0"));
   if (report->num_images < 2) {
@@ -260,42 +170,22 @@ bool RunReconstructImages(
   // Matches: COLMAP skips pairs already matched.
   {
     const auto start = Clock::now();
-    report->matcher = options.matcher;
-    if (report->matcher == "auto") {
-      report->matcher = report->num_images <= options.max_exhaustive_images
-                            ? "exhaustive"
-                            : "sequential";
+    std::vector<std::string> names;
+    for (const colmap::Image& image :
+         colmap::Database::Open(database)->ReadAllImages())
+      names.push_back(image.Name());
+    report->matcher = ChooseMatcher(options, names, &report->matcher_reason);
+    PhotoMatcher matcher;
+    if (!CreatePhotoMatcher(options, report->matcher, report->num_images,
+                            &matcher, error, progress)) {
+      return false;
     }
-    colmap::FeatureMatchingOptions matching;
-    matching.use_gpu = false;
-    matching.num_threads = options.num_threads;
-    matching.guided_matching = options.guided_matching;
-    colmap::TwoViewGeometryOptions geometry;
-    const int64_t n = report->num_images;
-    int64_t pairs = n * (n - 1) / 2;
-    std::unique_ptr<colmap::Thread> matcher;
-    if (report->matcher == "exhaustive") {
-      matcher = colmap::CreateExhaustiveFeatureMatcher(
-          colmap::ExhaustivePairingOptions(), matching, geometry, database);
-    } else if (report->matcher == "sequential") {
-      colmap::SequentialPairingOptions sequential;
-      sequential.overlap = options.sequential_overlap;
-      pairs = std::min<int64_t>(pairs, n * options.sequential_overlap * 3 / 2);
-      matcher = colmap::CreateSequentialFeatureMatcher(sequential, matching,
-                                                       geometry, database);
-    } else {
-      colmap::SpatialPairingOptions spatial;
-      spatial.max_num_neighbors = options.spatial_max_num_neighbors;
-      spatial.num_threads = options.num_threads;
-      pairs = std::min<int64_t>(pairs, n * options.spatial_max_num_neighbors);
-      matcher = colmap::CreateSpatialFeatureMatcher(spatial, matching, geometry,
-                                                    database);
-    }
-    say("matching " + std::to_string(n) + " images (" + report->matcher + ")");
+    say("matching " + std::to_string(report->num_images) + " images (" +
+        report->matcher + ": " + report->matcher_reason + ")");
     RunWithProgress(
-        matcher.get(), "matched pairs",
+        matcher.thread.get(), "matched pairs",
         [&] { return CountRows(database, "SELECT COUNT(*) FROM matches"); },
-        pairs, progress);
+        matcher.max_pairs, progress);
     report->matching_seconds = SecondsSince(start);
   }
   report->num_verified_pairs = static_cast<int>(CountRows(
@@ -336,9 +226,17 @@ std::string ReconstructImagesSummary(const ReconstructImagesReport& report) {
       << "cameras: " << report.num_cameras << " ("
       << report.num_cameras_with_exif_focal
       << " with an EXIF focal length; photos of the same EXIF make, model, "
-         "focal length and size share one)\n"
+         "focal length and size share one"
+      << (report.num_folder_cameras > 0
+              ? ", and so do those of " +
+                    std::to_string(report.num_folder_cameras) +
+                    " folder(s) of photos of one size and EXIF camera or "
+                    "numbered frames without EXIF"
+              : std::string())
+      << ")\n"
       << "verified pairs: " << report.num_verified_pairs << " ("
-      << report.matcher << " matching, " << report.matching_seconds << " s)\n"
+      << report.matcher << " matching: " << report.matcher_reason << "; "
+      << report.matching_seconds << " s)\n"
       << "motion: " << report.num_forward_pairs << " of "
       << report.num_motion_pairs
       << " verified pairs move along the viewing direction\n";

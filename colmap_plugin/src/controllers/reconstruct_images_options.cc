@@ -23,17 +23,30 @@ TmrMapperOptions ReconstructImagesOptions::MapperOptions() const {
 void ReconstructImagesOptions::AddTo(OptionTable* t) {
   t->Add("num_threads", &num_threads, "threads of every stage (-1: all cores)");
   t->Add("matcher", &matcher,
-         "auto | exhaustive | sequential (file-name order) | spatial (EXIF "
-         "GPS)");
+         "auto | exhaustive | sequential (file-name order) | retrieval "
+         "(vocabulary tree) | spatial (EXIF GPS)");
   t->Add("max_exhaustive_images", &max_exhaustive_images,
-         "auto: exhaustive up to this many images, sequential above")
+         "auto: exhaustive up to this many images; above, sequential for "
+         "numbered names, retrieval otherwise")
       .AtLeast(2);
+  t->Add("retrieval_neighbors", &retrieval_neighbors,
+         "similar photos each photo is matched with (retrieval, loop "
+         "detection)")
+      .AtLeast(1);
+  t->Add("VocabTreeMatching.vocab_tree_path", &vocab_tree_path,
+         "vocabulary tree file; empty: built from the photos' features");
+  t->Add("vocab_num_words", &vocab_num_words,
+         "words of the vocabulary built from the photos' features")
+      .AtLeast(100);
   t->Add("capture", &capture,
          "auto | general | forward (moving straight ahead): COLMAP's mapper "
          "settings for the photos");
   t->Add("ImageReader.camera_model", &camera_model, "COLMAP camera model");
   t->Add("ImageReader.single_camera", &single_camera,
          "one camera for all photos");
+  t->Add("folder_cameras", &folder_cameras,
+         "one camera per folder of photos with one size and EXIF camera, or "
+         "of numbered frames without EXIF");
   t->Add("FeatureExtraction.max_image_size", &max_image_size,
          "photos are downscaled to this size for SIFT")
       .AtLeast(16);
@@ -47,6 +60,11 @@ void ReconstructImagesOptions::AddTo(OptionTable* t) {
   t->Add("SequentialMatching.overlap", &sequential_overlap,
          "neighbours each photo is matched with (sequential)")
       .AtLeast(1);
+  t->Add("SequentialMatching.quadratic_overlap", &quadratic_overlap,
+         "sequential: neighbours at offsets 1, 2, 4, ... instead of 1 to "
+         "overlap");
+  t->Add("SequentialMatching.loop_detection", &loop_detection,
+         "sequential: every tenth photo also with its retrieved ones");
   t->Add("SpatialMatching.max_num_neighbors", &spatial_max_num_neighbors,
          "GPS neighbours each photo is matched with (spatial)")
       .AtLeast(1);
@@ -61,10 +79,15 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
   if (image_path.empty()) return fail("no image folder given");
   if (workspace_path.empty()) return fail("no workspace folder given");
   if (matcher != "auto" && matcher != "exhaustive" && matcher != "sequential" &&
-      matcher != "spatial") {
+      matcher != "retrieval" && matcher != "spatial") {
     return fail(
-        "--matcher must be auto, exhaustive, sequential or spatial, not '" +
+        "--matcher must be auto, exhaustive, sequential, retrieval or "
+        "spatial, not '" +
         matcher + "'");
+  }
+  if (std::error_code ec;
+      !vocab_tree_path.empty() && !fs::is_regular_file(vocab_tree_path, ec)) {
+    return fail("vocabulary tree '" + vocab_tree_path + "' is not a file");
   }
   if (capture != "auto" && capture != "general" && capture != "forward") {
     return fail("--capture must be auto, general or forward, not '" +

@@ -120,7 +120,7 @@ bool ModelEvaluationOptions::Check(std::string* error) const {
   }
   if (min_wrong_merge_images < 3)
     return fail("min_wrong_merge_images must be >= 3");
-  return true;
+  return match_consistency.Check(error);
 }
 
 colmap::Reconstruction ReadModel(const std::string& path) {
@@ -253,7 +253,8 @@ std::vector<std::array<double, 3>> ReadCameraCentres(
 namespace {
 
 MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
-                                       const std::string& database_path) {
+                                       const std::string& database_path,
+                                       const MatchConsistencyOptions& options) {
   namespace fs = std::filesystem;
   // COLMAP's Database class writes to what it opens: the model's images
   // are copied into a temporary database first (the input stays read-only).
@@ -269,7 +270,7 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
   try {
     const std::shared_ptr<colmap::Database> database =
         colmap::Database::Open(scratch.string());
-    result = CheckMatchConsistency(model, *database, MatchConsistencyOptions());
+    result = CheckMatchConsistency(model, *database, options);
   } catch (const std::exception& e) {
     error = e.what();
   }
@@ -290,9 +291,12 @@ ModelEvaluation EvaluateModel(const std::string& reference_path,
   const colmap::Reconstruction model = ReadModel(model_path);
   ModelEvaluation eval = EvaluateReconstruction(reference, model, options);
   eval.model_path = model_path;
-  if (!options.database_path.empty())
-    eval.match_consistency =
-        CheckMatchConsistency(model, options.database_path);
+  if (!options.database_path.empty()) {
+    eval.match_consistency = CheckMatchConsistency(
+        model, options.database_path, options.match_consistency);
+    eval.match_consistent =
+        eval.match_consistency->IsConsistent(options.match_consistency);
+  }
   return eval;
 }
 

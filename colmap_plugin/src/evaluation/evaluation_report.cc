@@ -77,8 +77,7 @@ void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
         << std::setprecision(2) << 100.0 * c.InconsistentShare() << "%) and "
         << c.num_inconsistent_pairs << " of " << c.num_pairs
         << " pairs inconsistent: "
-        << (c.IsConsistent(MatchConsistencyOptions()) ? "consistent"
-                                                      : "INCONSISTENT")
+        << (e.match_consistent ? "consistent" : "INCONSISTENT")
         << "\n";
   }
   out << std::defaultfloat
@@ -125,12 +124,13 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
     out << "]";
     if (const auto& c = e.match_consistency) {
       out << ", \"match_consistency\": {\"matches\": " << c->num_matches
+          << ", \"low_angle\": " << c->num_low_angle
           << ", \"tested\": " << c->num_tested
           << ", \"inconsistent\": " << c->num_inconsistent
           << ", \"pairs\": " << c->num_pairs
           << ", \"inconsistent_pairs\": " << c->num_inconsistent_pairs
           << ", \"consistent\": "
-          << (c->IsConsistent(MatchConsistencyOptions()) ? "true" : "false")
+          << (e.match_consistent ? "true" : "false")
           << "}";
     }
     out << "}";

@@ -3,6 +3,7 @@
 
 #include <colmap/geometry/triangulation.h>
 #include <colmap/scene/projection.h>
+#include <colmap/math/math.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -17,6 +18,11 @@ bool MatchConsistencyOptions::Check(std::string* error) const {
   };
   if (!(max_reprojection_error > 0.0 && std::isfinite(max_reprojection_error)))
     return fail("max_reprojection_error must be > 0");
+  // Angles between two rays are at most 90 degrees (COLMAP's
+  // CalculateTriangulationAngle).
+  if (!(min_triangulation_angle_deg >= 0.0 &&
+        min_triangulation_angle_deg < 90.0))
+    return fail("min_triangulation_angle_deg must be in [0, 90)");
   if (!(max_inconsistent_share >= 0.0 && max_inconsistent_share <= 1.0))
     return fail("max_inconsistent_share must be in [0, 1]");
   if (max_inconsistent_pairs < 0 || min_pair_matches < 1)
@@ -31,6 +37,7 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
     throw std::invalid_argument("CheckMatchConsistency: " + error);
   const double max_squared_error =
       options.max_reprojection_error * options.max_reprojection_error;
+  const double min_angle = colmap::DegToRad(options.min_triangulation_angle_deg);
   MatchConsistency result;
   for (const auto& [pair_id, geometry] : database.ReadTwoViewGeometries()) {
     const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
@@ -44,6 +51,8 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
     const colmap::Camera& camera2 = model.Camera(image2.CameraId());
     const Eigen::Matrix3x4d pose1 = image1.CamFromWorld().ToMatrix();
     const Eigen::Matrix3x4d pose2 = image2.CamFromWorld().ToMatrix();
+    const Eigen::Vector3d center1 = image1.ProjectionCenter();
+    const Eigen::Vector3d center2 = image2.ProjectionCenter();
     ++result.num_pairs;
     int tested = 0, inconsistent = 0;
     for (const colmap::FeatureMatch& match : matches) {
@@ -70,6 +79,11 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
           !xyz.allFinite() || !colmap::HasPointPositiveDepth(pose1, xyz) ||
           !colmap::HasPointPositiveDepth(pose2, xyz))
         continue;
+      if (colmap::CalculateTriangulationAngle(center1, center2, xyz) <
+          min_angle) {
+        ++result.num_low_angle;
+        continue;
+      }
       ++tested;
       if (colmap::CalculateSquaredReprojectionError(
               p1.xy, xyz, pose1, camera1) > max_squared_error ||

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -179,10 +180,13 @@ std::string DescribeConsistency(const MatchConsistency& c) {
 // (CheckMatchConsistency) is mapped again: first from the same initial pair
 // with the intrinsics held at their priors (where COLMAP's mapper went
 // wrong, it had traded focal length against depth from the initial pair on:
-// docs/mapper.md, step 3), then from each other candidate pair. A redo replaces
-// the model when it contradicts fewer matches and registers at least 90% as
-// many images; the first consistent one ends the search. Appends what happened
-// to `how`.
+// docs/mapper.md, step 3; skipped when the task holds them already), then
+// from each other candidate pair. A redo replaces the model when it
+// contradicts fewer matches and registers at least 90% as many images; the
+// first consistent one ends the search, and so does a redo that gives the
+// same model again (as many images, within 2% as many contradicted
+// matches): what contradicts it then is the photos' (forward motion, lens
+// distortion), not the initial pair's. Appends what happened to `how`.
 void RedoIfInconsistent(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database,
@@ -202,9 +206,13 @@ void RedoIfInconsistent(
   held.ba_refine_focal_length = false;
   held.ba_refine_principal_point = false;
   held.ba_refine_extra_params = false;
+  const bool holds_intrinsics = !mapper_options.ba_refine_focal_length &&
+                                !mapper_options.ba_refine_principal_point &&
+                                !mapper_options.ba_refine_extra_params;
   std::vector<
       std::pair<const colmap::IncrementalPipelineOptions*, std::pair<int, int>>>
-      redos = {{&held, initial_pair}};
+      redos;
+  if (!holds_intrinsics) redos.push_back({&held, initial_pair});
   for (const auto& pair : candidate_pairs)
     if (pair != initial_pair) redos.push_back({&mapper_options, pair});
   for (const auto& [options, pair] : redos) {
@@ -216,11 +224,19 @@ void RedoIfInconsistent(
       continue;
     }
     const MatchConsistency c = consistency(*redo);
+    const bool same_model =
+        redo->NumRegImages() == (*model)->NumRegImages() &&
+        std::abs(c.num_inconsistent - best.num_inconsistent) * 50 <=
+            best.num_inconsistent;
     const bool better =
         c.InconsistentShare() < best.InconsistentShare() &&
         10 * redo->NumRegImages() >= 9 * (*model)->NumRegImages();
     *how += std::to_string(redo->NumRegImages()) + " images, " +
             DescribeConsistency(c) + (better ? ", taken" : ", not taken");
+    if (same_model && !better) {
+      *how += "; the same model again: kept";
+      return;
+    }
     if (!better) continue;
     *model = redo;
     best = c;

@@ -14,6 +14,12 @@ struct MatchConsistencyOptions {
   // the model's poses and cameras, it reprojects farther than this (pixels)
   // in one of its images. COLMAP verifies matches at 4 px.
   double max_reprojection_error = 4.0;
+  // Matches whose rays meet at less than this angle (degrees) at the
+  // triangulated point are not tested: their depth is ill-determined
+  // (forward motion, distant points), and on real photos such matches
+  // contradict correct models (docs/benchmarks.md, "The kernel check on
+  // real photos"). COLMAP's default filter_min_tri_angle.
+  double min_triangulation_angle_deg = 1.5;
   // A model is inconsistent when more than this share of the verified
   // matches between its registered images is inconsistent ...
   double max_inconsistent_share = 0.005;
@@ -30,10 +36,11 @@ struct MatchConsistencyOptions {
 struct MatchConsistency {
   int64_t num_matches = 0;          // inlier matches of registered pairs
   int64_t num_in_common_track = 0;  // both keypoints in the same 3D point
-  int64_t num_tested = 0;           // the others, triangulated in front
-  int64_t num_inconsistent = 0;     // of those, reprojecting too far
-  int num_pairs = 0;                // registered pairs with matches
-  int num_inconsistent_pairs = 0;   // see MatchConsistencyOptions
+  int64_t num_low_angle = 0;  // the others, in front at too small an angle
+  int64_t num_tested = 0;     // the others, in front at a sufficient angle
+  int64_t num_inconsistent = 0;  // of those, reprojecting too far
+  int num_pairs = 0;              // registered pairs with matches
+  int num_inconsistent_pairs = 0;  // see MatchConsistencyOptions
 
   double InconsistentShare() const {
     return num_matches > 0 ? static_cast<double>(num_inconsistent) /

@@ -29,6 +29,8 @@ struct ModelEvaluationOptions {
   // read-only); its verified matches between registered images are checked
   // against the model's poses, which needs no ground truth.
   std::string database_path;
+  // How that check tests and judges the matches.
+  MatchConsistencyOptions match_consistency;
 
   bool Check(std::string* error = nullptr) const;
 };
@@ -80,9 +82,10 @@ struct ModelEvaluation {
   // Names of the model's registered images.
   std::vector<std::string> image_names;
   // With options.database_path: the model against the database's verified
-  // matches (tmr/colmap/match_consistency.h), judged with the default
-  // MatchConsistencyOptions.
+  // matches (tmr/colmap/match_consistency.h), tested and judged with
+  // options.match_consistency.
   std::optional<MatchConsistency> match_consistency;
+  bool match_consistent = false;  // match_consistency passes the options
 };
 
 // Reads the reference and the model (COLMAP models, binary or text) and

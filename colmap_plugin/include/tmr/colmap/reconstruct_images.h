@@ -17,10 +17,19 @@ struct ReconstructImagesOptions {
   std::string image_path;      // photos (JPEG, PNG, ...), read-only
   std::string workspace_path;  // database.db, sparse/0, 1, ..., summary.txt
   // "exhaustive", "sequential" (photos in file-name order, as from a video
-  // or a walk), "spatial" (by EXIF GPS) or "auto": exhaustive up to
-  // max_exhaustive_images photos, sequential above.
+  // or a walk), "retrieval" (each photo with its most similar ones by a
+  // vocabulary tree, the paper's matching), "spatial" (by EXIF GPS) or
+  // "auto": exhaustive up to max_exhaustive_images photos; above, sequential
+  // when the names are a numbered sequence, retrieval otherwise.
   std::string matcher = "auto";                // --matcher
   int max_exhaustive_images = 500;             // --max_exhaustive_images
+  // Retrieval: similar photos each photo is matched with (paper: 30); also
+  // the photos that sequential loop detection retrieves.
+  int retrieval_neighbors = 30;                // --retrieval_neighbors
+  // A COLMAP vocabulary tree file; empty: one is built from the photos'
+  // own features with up to vocab_num_words words.
+  std::string vocab_tree_path;           // --VocabTreeMatching.vocab_tree_path
+  int vocab_num_words = 4096;            // --vocab_num_words
   // How the photos were taken, which picks COLMAP's mapper settings:
   // "general" (COLMAP's), "forward" (moving straight ahead along the
   // viewing direction: ForwardMotionMapperOptions) or "auto": forward when
@@ -30,6 +39,11 @@ struct ReconstructImagesOptions {
   std::string capture = "auto";                // --capture
   std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
   bool single_camera = false;                  // --ImageReader.single_camera
+  // One camera per folder whose photos share size and EXIF make, model
+  // and focal length, or are numbered frames without EXIF (a video); COLMAP
+  // alone gives each such photo its own camera unless EXIF names a make and
+  // model.
+  bool folder_cameras = true;  // --folder_cameras
   // Extraction as `colmap automatic_reconstructor` (its default quality,
   // "high") sets it.
   int max_image_size = 2400;           // --FeatureExtraction.max_image_size
@@ -39,6 +53,11 @@ struct ReconstructImagesOptions {
   // matching 7.8 times slower for the same models (docs/reconstruct.md).
   bool guided_matching = false;        // --FeatureMatching.guided_matching
   int sequential_overlap = 10;         // --SequentialMatching.overlap
+  // COLMAP's default (true) pairs offsets 1, 2, 4, ... 2^(overlap-1); here
+  // offsets 1 to overlap, and loop detection finds the returns.
+  bool quadratic_overlap = false;  // --SequentialMatching.quadratic_overlap
+  // Every tenth photo also with its retrieved ones (COLMAP's default: off).
+  bool loop_detection = true;      // --SequentialMatching.loop_detection
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
   // Threads of every stage (-1: all cores); mapper.num_threads follows it.
   int num_threads = -1;  // --num_threads
@@ -63,8 +82,10 @@ struct ReconstructImagesReport {
   // other photo its own.
   int num_cameras = 0;
   int num_cameras_with_exif_focal = 0;  // focal length prior from EXIF
+  int num_folder_cameras = 0;  // folders of one camera (folder_cameras)
   int num_verified_pairs = 0;  // pairs with verified two-view geometry
   std::string matcher;         // the matcher that ran
+  std::string matcher_reason;  // why (ChooseMatcher)
   double extraction_seconds = 0.0;
   double matching_seconds = 0.0;
   double mapping_seconds = 0.0;  // every mapping pass
