@@ -24,17 +24,7 @@ mkdir -p "$OUT"
 CSV="$OUT/results.csv"
 [[ -f "$CSV" ]] || echo "set,photos,tool,extraction_s,matching_s,mapping_s,total_s,peak_mib,registered,largest,models,median_rot_deg" >"$CSV"
 
-# The temple ring's ground truth has 16 cameras rolled 180 degrees against
-# their photos; templering_gt.py corrects it (docs/benchmarks.md).
-ground_truth() {  # SET: prints the ground-truth folder, or nothing
-  local gt="$DATA/$1/gt/colmap_text"
-  [[ -f "$gt/images.txt" ]] || return 0
-  if [[ $1 == middlebury_templeRing ]]; then
-    python3 tools/bench/templering_gt.py "$gt" "$OUT/templeRing_gt" >/dev/null
-    gt="$OUT/templeRing_gt"
-  fi
-  echo "$gt"
-}
+source tools/bench/ground_truth.sh
 
 # report SET PHOTOS TOOL LOG MODELS_DIR GT: one table row and one CSV line.
 report() {
@@ -89,7 +79,7 @@ for set in "${sets[@]}"; do
   images="$DATA/$set/images"
   [[ -d "$images" ]] || { echo "no photos at $images" >&2; continue; }
   photos=$(find -L "$images" -type f | wc -l)
-  gt=$(ground_truth "$set")
+  gt=$(ground_truth "$DATA" "$set" "$OUT")
   dir="$OUT/$set"
   rm -rf "$dir" && mkdir -p "$dir/stock"
   /usr/bin/time -f "%e %M" -o "$dir/stock.log.time" "$COLMAP" automatic_reconstructor \

@@ -24,6 +24,7 @@ BIN=build/tools
 IN=out/bench_reconstruct
 OUT=out/kernel_check_calibration
 DATA="${DATA:-../shared/data}"
+source tools/bench/ground_truth.sh
 mkdir -p "$OUT"
 CSV="$OUT/results.csv"
 echo "set,model,images,matches,low_angle_share,inconsistent_share_all,inconsistent_pairs_all,inconsistent_share,pairs,inconsistent_pairs,consistent,median_rot_deg" >"$CSV"
@@ -66,9 +67,7 @@ echo "|---|---|---|---|---|---|---|---|---|"
 for set in "${sets[@]}"; do
   ws="$IN/$set/tmr"
   [[ -d "$ws/sparse/0" ]] || { echo "no tmr_reconstruct workspace for $set: run bench_reconstruct.sh" >&2; continue; }
-  gt=""
-  [[ -f "$DATA/$set/gt/colmap_text/images.txt" ]] && gt="$DATA/$set/gt/colmap_text"
-  [[ $set == middlebury_templeRing && -d "$IN/templeRing_gt" ]] && gt="$IN/templeRing_gt"
+  gt=$(ground_truth "$DATA" "$set" "$OUT")
   dir="$OUT/$set"; rm -rf "$dir"; mkdir -p "$dir"
   check "$set" correct "$ws/sparse/0" "$ws/database.db" "$gt"
   [[ -d "$IN/$set/stock/sparse/0" ]] &&

@@ -22,9 +22,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // The user's vocabulary file, or one built from the workspace's features
-// (workspace_path/vocab_tree.bin, reused when a rerun finds it). Reads it
-// once here: COLMAP's matcher thread would end the program on a file that
-// is not a vocabulary.
+// (workspace_path/vocab_tree.bin, reused when a rerun finds it). A file
+// not built here is read once first: COLMAP's matcher thread would end the
+// program on a file that is not a vocabulary.
 bool VocabularyPath(const ReconstructImagesOptions& options, std::string* path,
                     std::string* error,
                     const std::function<void(const std::string&)>& progress) {
@@ -51,6 +51,7 @@ bool VocabularyPath(const ReconstructImagesOptions& options, std::string* path,
       line << "vocabulary tree built in " << std::fixed
            << std::setprecision(1) << SecondsSince(start) << " s";
       say(line.str());
+      return true;
     }
   }
   try {
