@@ -76,10 +76,10 @@ class ForwardMotionTest : public ::testing::Test {
 };
 
 TEST_F(ForwardMotionTest, CountsPairsMovingAlongTheViewingDirection) {
-  Write(0, 1, Geometry({0.02, 0.0, -1.0}, /*calibrated=*/true));   // forward
-  Write(0, 2, Geometry({0.0, 0.05, 1.0}, /*calibrated=*/false));   // forward
-  Write(1, 2, Geometry({1.0, 0.0, 0.1}, /*calibrated=*/true));     // sideways
-  Write(2, 3, Geometry({0.3, 1.0, 0.2}, /*calibrated=*/false));    // sideways
+  Write(0, 1, Geometry({0.02, 0.0, -1.0}, /*calibrated=*/true));  // forward
+  Write(0, 2, Geometry({0.0, 0.05, 1.0}, /*calibrated=*/false));  // forward
+  Write(1, 2, Geometry({1.0, 0.0, 0.1}, /*calibrated=*/true));    // sideways
+  Write(2, 3, Geometry({0.3, 1.0, 0.2}, /*calibrated=*/false));   // sideways
   colmap::TwoViewGeometry planar = Geometry({0, 0, 1}, true);
   planar.config = colmap::TwoViewGeometry::PLANAR;
   Write(0, 3, planar);
@@ -87,7 +87,8 @@ TEST_F(ForwardMotionTest, CountsPairsMovingAlongTheViewingDirection) {
   ForwardMotionStats stats = MeasureForwardMotion(*database_, 0.95);
   EXPECT_EQ(stats.num_pairs, 4);
   EXPECT_EQ(stats.num_forward, 2);
-  EXPECT_FALSE(stats.MostlyForward());
+  EXPECT_FALSE(stats.MovesForward(0.5));
+  EXPECT_TRUE(stats.MovesForward(0.4));
   EXPECT_EQ(stats.num_cameras, 1);
   EXPECT_EQ(stats.num_cameras_with_prior_focal, 1);
 
@@ -95,7 +96,8 @@ TEST_F(ForwardMotionTest, CountsPairsMovingAlongTheViewingDirection) {
   stats = MeasureForwardMotion(*database_, 0.95);
   EXPECT_EQ(stats.num_pairs, 5);
   EXPECT_EQ(stats.num_forward, 3);
-  EXPECT_TRUE(stats.MostlyForward());
+  EXPECT_TRUE(stats.MovesForward(0.5));
+  EXPECT_FALSE(stats.MovesForward(1.0));  // never more than every pair
 }
 
 TEST(ForwardMotionMapperOptionsTest, ChangesOnlyCOLMAPsDefaults) {

@@ -22,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> Names(const std::string& pattern, int first,
-                               int count, int step) {
+std::vector<std::string> Names(const std::string& pattern, int first, int count,
+                               int step) {
   std::vector<std::string> names;
   for (int i = 0; i < count; ++i) {
     char name[256];
@@ -145,6 +145,14 @@ class VocabularyTreeTest : public ::testing::Test {
   std::string database_path_;
 };
 
+TEST(VocabularyWordsTest, TwoPerPhotoBetween1024AndTheLimit) {
+  EXPECT_EQ(VocabularyWords(200, 4096), 1024);
+  EXPECT_EQ(VocabularyWords(1000, 4096), 2000);
+  EXPECT_EQ(VocabularyWords(2000, 4096), 4000);
+  EXPECT_EQ(VocabularyWords(100000, 4096), 4096);
+  EXPECT_EQ(VocabularyWords(200, 500), 500);  // the user's limit first
+}
+
 TEST_F(VocabularyTreeTest, BuildsAReadableTreeRepeatably) {
   VocabularyOptions options;
   options.num_visual_words = 125;  // the fewest words of 64 descriptors each
@@ -177,8 +185,7 @@ TEST_F(VocabularyTreeTest, FewFeaturesGiveFewerWordsOrAReason) {
   std::string error;
   ASSERT_TRUE(BuildVocabularyTree(database_path_, path, options, &error))
       << error;
-  EXPECT_EQ(colmap::retrieval::VisualIndex::Read(path)->NumVisualWords(),
-            125u);
+  EXPECT_EQ(colmap::retrieval::VisualIndex::Read(path)->NumVisualWords(), 125u);
   options.descriptors_per_word = 100;  // 80 words: too few
   EXPECT_FALSE(BuildVocabularyTree(database_path_, path, options, &error));
   EXPECT_EQ(error, "too few features (8000) for a vocabulary tree");

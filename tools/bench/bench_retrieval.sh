@@ -4,9 +4,10 @@
 # each photo with its 30 most similar) on sets of 200 to 2,000 photos, and
 # with exhaustive matching of the same features where that is affordable.
 # The photos are views cut from the 107 photos of ../shared/data: each a
-# window of 45-75% of a photo's width at a random place, scaled to at most
-# SIZE px, under a name that hides where it came from (the first N views
-# of one list of 2,000, so every set holds views of every photo). Prints,
+# window of 45-75% of a photo's width at a random place (of the photo
+# scaled to 2 x SIZE px), scaled to at most SIZE px, under a name that
+# hides where it came from (the first N views of one list of 2,000, so
+# every set holds views of every photo). Prints,
 # per set size: extraction, vocabulary and matching time and the matching
 # time per photo, pairs matched and verified, the share of exhaustive
 # matching's verified pairs that retrieval also verified (recall), and the
@@ -47,19 +48,30 @@ while len(order) < 2000:
     batch = photos[:]; rng.shuffle(batch); order += batch
 lines = order[:2000]
 open(f"{out}/list.txt", "w").write("\n".join(lines) + "\n")
-sizes = {}
+# Each photo is decoded once, scaled to at most 2 x SIZE px (a view covers
+# at least 45% of it, so it is still downscaled to SIZE).
+os.makedirs(f"{out}/scaled", exist_ok=True)
+# (--resize to computed sizes: oiiotool's --fit pads to a square.)
+def fitted(w, h, limit):
+    scale = min(1.0, limit / max(w, h))
+    return max(1, round(w * scale)), max(1, round(h * scale))
+scaled, sizes = {}, {}
+for k, photo in enumerate(sorted(set(lines))):
+    scaled[photo] = f"{out}/scaled/{k:03d}.png"
+    info = subprocess.run(["oiiotool", "--info", photo], capture_output=True, text=True).stdout
+    w, h = info.split(":", 1)[1].split(",")[0].strip().split(" x ")
+    sizes[photo] = fitted(int(w), int(h), 2 * size)
+    subprocess.run(["oiiotool", photo, "--resize", "{}x{}".format(*sizes[photo]), "--eraseattrib", ".*",
+                    "-o", scaled[photo]], check=True)
 for i, photo in enumerate(lines):
-    if photo not in sizes:
-        info = subprocess.run(["oiiotool", "--info", photo], capture_output=True, text=True).stdout
-        w, h = info.split(":", 1)[1].split(",")[0].strip().split(" x ")
-        sizes[photo] = (int(w), int(h))
     w, h = sizes[photo]
     share = rng.uniform(0.45, 0.75)
     cw, ch = int(w * share), int(h * share)
     x, y = rng.randint(0, w - cw), rng.randint(0, h - ch)
     name = hashlib.sha1(f"{i}:{photo}".encode()).hexdigest()[:16] + ".jpg"
     # No EXIF: a crop's focal length is not its photo's.
-    subprocess.run(["oiiotool", photo, "--cut", f"{cw}x{ch}+{x}+{y}", "--fit", f"{size}x{size}",
+    subprocess.run(["oiiotool", scaled[photo], "--cut", f"{cw}x{ch}+{x}+{y}",
+                    "--resize", "{}x{}".format(*fitted(cw, ch, size)),
                     "--eraseattrib", ".*", "-o", f"{out}/{i:04d}_{name}"], check=True)
     if (i + 1) % 200 == 0: print(f"  {i + 1} views", flush=True)
 PY

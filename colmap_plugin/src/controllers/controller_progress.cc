@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <iomanip>
 #include <sstream>
 #include <thread>
@@ -28,7 +29,9 @@ int64_t CountRows(const std::string& database, const std::string& sql) {
 
 void RunWithProgress(colmap::Thread* thread, const std::string& what,
                      const std::function<int64_t()>& count, int64_t total,
+                     bool total_is_bound,
                      const std::function<void(const std::string&)>& progress) {
+  const std::string bound = total_is_bound ? "at most " : "";
   const auto start = Clock::now();
   const int64_t initial = std::max<int64_t>(0, count());
   thread->Start();
@@ -40,15 +43,31 @@ void RunWithProgress(colmap::Thread* thread, const std::string& what,
     const int64_t done = count();
     if (done < 0) continue;
     std::ostringstream line;
-    line << what << ": " << done << " of " << total;
+    line << what << ": " << done << " of " << bound << total;
     const double seconds = SecondsSince(start);
     if (done > initial && done < total) {
-      line << "; ETA " << std::fixed << std::setprecision(0)
+      line << "; ETA " << bound << std::fixed << std::setprecision(0)
            << seconds / (done - initial) * (total - done) << " s";
     }
     progress(line.str());
   }
   thread->Wait();
+}
+
+bool RunWithHeartbeat(const std::function<bool()>& work,
+                      const std::string& what,
+                      const std::function<void(const std::string&)>& progress) {
+  const auto start = Clock::now();
+  std::future<bool> result = std::async(std::launch::async, work);
+  while (result.wait_for(std::chrono::seconds(10)) !=
+         std::future_status::ready) {
+    if (progress) {
+      progress(what + ": " +
+               std::to_string(static_cast<int>(SecondsSince(start))) +
+               " s so far");
+    }
+  }
+  return result.get();
 }
 
 }  // namespace tmr

@@ -25,9 +25,8 @@ bool IsPhoto(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  for (const char* known :
-       {".jpg", ".jpeg", ".png", ".tif", ".tiff", ".bmp", ".ppm", ".pgm",
-        ".webp", ".jp2"}) {
+  for (const char* known : {".jpg", ".jpeg", ".png", ".tif", ".tiff", ".bmp",
+                            ".ppm", ".pgm", ".webp", ".jp2"}) {
     if (ext == known) return true;
   }
   return false;
@@ -161,16 +160,15 @@ void ExtractPhotoFeatures(
     RunWithProgress(
         extractor.get(), "features",
         [&] { return CountRows(database, "SELECT COUNT(*) FROM descriptors"); },
-        static_cast<int64_t>(names.size()), progress);
+        static_cast<int64_t>(names.size()), /*total_is_bound=*/false, progress);
   };
   if (progress) {
-    progress("extracting features of " + std::to_string(names.size()) +
-             " photos" +
-             (shared.empty() ? ""
-                             : " (" + std::to_string(num_shared) +
-                                   " of them in " +
-                                   std::to_string(shared.size()) +
-                                   " folder(s) of one camera each)"));
+    progress(
+        "extracting features of " + std::to_string(names.size()) + " photos" +
+        (shared.empty() ? ""
+                        : " (" + std::to_string(num_shared) + " of them in " +
+                              std::to_string(shared.size()) +
+                              " folder(s) of one camera each)"));
   }
   for (const auto& [folder, subset] : shared) extract(subset, true);
   extract(others, false);

@@ -20,9 +20,9 @@ struct PhotoHeader {
   std::string name;  // COLMAP's image name: relative path, '/'-separated
   int width = 0;
   int height = 0;
-  std::string make;          // EXIF; empty when absent
-  std::string model;         // EXIF; empty when absent
-  double focal_length = 0;   // EXIF (35 mm equivalent, else mm); 0: absent
+  std::string make;         // EXIF; empty when absent
+  std::string model;        // EXIF; empty when absent
+  double focal_length = 0;  // EXIF (35 mm equivalent, else mm); 0: absent
 };
 
 // Reads a photo's size and EXIF camera fields without decoding its pixels

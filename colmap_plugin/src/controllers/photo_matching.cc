@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 
+#include "controllers/controller_progress.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -25,8 +26,8 @@ namespace fs = std::filesystem;
 // (workspace_path/vocab_tree.bin, reused when a rerun finds it). A file
 // not built here is read once first: COLMAP's matcher thread would end the
 // program on a file that is not a vocabulary.
-bool VocabularyPath(const ReconstructImagesOptions& options, std::string* path,
-                    std::string* error,
+bool VocabularyPath(const ReconstructImagesOptions& options, int num_images,
+                    std::string* path, std::string* error,
                     const std::function<void(const std::string&)>& progress) {
   auto say = [&progress](const std::string& line) {
     if (progress) progress(line);
@@ -37,19 +38,24 @@ bool VocabularyPath(const ReconstructImagesOptions& options, std::string* path,
     std::error_code ec;
     if (!fs::is_regular_file(*path, ec)) {
       VocabularyOptions vocabulary;
-      vocabulary.num_visual_words = options.vocab_num_words;
+      vocabulary.num_visual_words =
+          VocabularyWords(num_images, options.vocab_num_words);
       vocabulary.seed = options.mapper.tree.seed;
       say("building a vocabulary tree of up to " +
           std::to_string(vocabulary.num_visual_words) +
           " words from the photos' features");
       const auto start = std::chrono::steady_clock::now();
-      if (!BuildVocabularyTree(options.MapperOptions().database_path, *path,
-                               vocabulary, error)) {
+      const std::string database = options.MapperOptions().database_path;
+      if (!RunWithHeartbeat(
+              [&] {
+                return BuildVocabularyTree(database, *path, vocabulary, error);
+              },
+              "building the vocabulary tree", progress)) {
         return false;
       }
       std::ostringstream line;
-      line << "vocabulary tree built in " << std::fixed
-           << std::setprecision(1) << SecondsSince(start) << " s";
+      line << "vocabulary tree built in " << std::fixed << std::setprecision(1)
+           << SecondsSince(start) << " s";
       say(line.str());
       return true;
     }
@@ -77,7 +83,8 @@ bool IsNumberedSequence(const std::vector<std::string>& names) {
     const size_t last = stem.find_last_of("0123456789");
     if (last == std::string::npos) continue;
     size_t first = last;
-    while (first > 0 && std::isdigit(static_cast<unsigned char>(stem[first - 1])))
+    while (first > 0 &&
+           std::isdigit(static_cast<unsigned char>(stem[first - 1])))
       --first;
     const size_t digits = last - first + 1;
     if (digits > 18) continue;  // not a frame number
@@ -120,10 +127,13 @@ std::string ChooseMatcher(const ReconstructImagesOptions& options,
   return "retrieval";
 }
 
+int VocabularyWords(int num_images, int max_words) {
+  return std::min(max_words, std::max(1024, 2 * num_images));
+}
+
 bool BuildVocabularyTree(const std::string& database_path,
                          const std::string& path,
-                         const VocabularyOptions& options,
-                         std::string* error) {
+                         const VocabularyOptions& options, std::string* error) {
   const std::string partial = path + ".partial";
   try {
     const std::shared_ptr<colmap::Database> database =
@@ -188,13 +198,15 @@ bool CreatePhotoMatcher(
   const int retrieved = options.retrieval_neighbors + 1;
   std::string vocabulary;
   if (name == "retrieval" &&
-      !VocabularyPath(options, &vocabulary, error, progress)) {
+      !VocabularyPath(options, static_cast<int>(num_images), &vocabulary, error,
+                      progress)) {
     return false;
   }
   // Loop detection is an addition: without a vocabulary, sequential
   // matching still runs.
   if (name == "sequential" && options.loop_detection &&
-      !VocabularyPath(options, &vocabulary, error, progress)) {
+      !VocabularyPath(options, static_cast<int>(num_images), &vocabulary, error,
+                      progress)) {
     if (progress) progress("no loop detection: " + *error);
     error->clear();
     vocabulary.clear();
@@ -203,6 +215,7 @@ bool CreatePhotoMatcher(
     matcher->thread = colmap::CreateExhaustiveFeatureMatcher(
         colmap::ExhaustivePairingOptions(), matching, geometry, database);
     matcher->max_pairs = all_pairs;
+    matcher->max_pairs_exact = true;
   } else if (name == "sequential") {
     colmap::SequentialPairingOptions sequential;
     sequential.overlap = options.sequential_overlap;
@@ -214,26 +227,26 @@ bool CreatePhotoMatcher(
     matcher->thread = colmap::CreateSequentialFeatureMatcher(
         sequential, matching, geometry, database);
     matcher->max_pairs = std::min<int64_t>(
-        all_pairs, n * options.sequential_overlap +
-                       (sequential.loop_detection
-                            ? n / sequential.loop_detection_period *
-                                  options.retrieval_neighbors
-                            : 0));
+        all_pairs,
+        n * options.sequential_overlap +
+            (sequential.loop_detection ? n / sequential.loop_detection_period *
+                                             options.retrieval_neighbors
+                                       : 0));
   } else if (name == "retrieval") {
     colmap::VocabTreePairingOptions retrieval;
     retrieval.num_images = retrieved;
     retrieval.num_threads = options.num_threads;
     retrieval.vocab_tree_path = vocabulary;
-    matcher->thread = colmap::CreateVocabTreeFeatureMatcher(
-        retrieval, matching, geometry, database);
+    matcher->thread = colmap::CreateVocabTreeFeatureMatcher(retrieval, matching,
+                                                            geometry, database);
     matcher->max_pairs =
         std::min<int64_t>(all_pairs, n * options.retrieval_neighbors);
   } else {
     colmap::SpatialPairingOptions spatial;
     spatial.max_num_neighbors = options.spatial_max_num_neighbors;
     spatial.num_threads = options.num_threads;
-    matcher->thread = colmap::CreateSpatialFeatureMatcher(
-        spatial, matching, geometry, database);
+    matcher->thread = colmap::CreateSpatialFeatureMatcher(spatial, matching,
+                                                          geometry, database);
     matcher->max_pairs =
         std::min<int64_t>(all_pairs, n * options.spatial_max_num_neighbors);
   }

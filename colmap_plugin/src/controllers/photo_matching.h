@@ -35,11 +35,19 @@ std::string ChooseMatcher(const ReconstructImagesOptions& options,
 // random sample of the database's descriptors, at most
 // descriptors_per_word per word.
 struct VocabularyOptions {
-  int num_visual_words = 4096;   // fewer when the database has few features
+  int num_visual_words = 4096;    // fewer when the database has few features
   int descriptors_per_word = 64;  // faiss warns below 39
   int num_iterations = 20;        // k-means iterations
   uint64_t seed = 0;              // sampling and Hamming projection
 };
+
+// Words of the vocabulary built for `num_images` photos: 2 per photo, at
+// least 1,024 and at most `max_words`. The k-means time grows with the
+// square of the words (64 descriptors each) and not with the photos: at
+// 200 views (docs/benchmarks.md) 1,024 words took 11 s and 4,096 words
+// 166 s, and retrieval found 89% against 94% of the pairs exhaustive
+// matching verified, with as many photos registered.
+int VocabularyWords(int num_images, int max_words);
 
 // Builds the vocabulary from the database at `database_path` and writes it
 // to `path` through a temporary file; the same database and seed give the
@@ -49,10 +57,13 @@ bool BuildVocabularyTree(const std::string& database_path,
                          const VocabularyOptions& options, std::string* error);
 
 // A COLMAP matcher thread over the workspace database and the number of
-// pairs it will match at most (for the progress line).
+// pairs it will match at most (for the progress line): exact for
+// exhaustive matching, an upper bound for the others (a pair found from
+// both of its photos is matched once).
 struct PhotoMatcher {
   std::unique_ptr<colmap::Thread> thread;
   int64_t max_pairs = 0;
+  bool max_pairs_exact = false;
 };
 
 // Creates COLMAP's matcher for the pairing `name` (ChooseMatcher) over

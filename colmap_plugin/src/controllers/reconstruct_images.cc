@@ -45,7 +45,8 @@ bool ReplaceFolder(const std::string& source, const std::string& target,
   if (!ec && fs::exists(target, ec)) fs::rename(target, old, ec);
   if (!ec) fs::rename(source, target, ec);
   if (ec) {
-    *error = "cannot move '" + source + "' to '" + target + "': " + ec.message();
+    *error =
+        "cannot move '" + source + "' to '" + target + "': " + ec.message();
     return false;
   }
   fs::remove_all(old, ec);
@@ -74,11 +75,13 @@ bool MapPhotos(const ReconstructImagesOptions& options,
   const auto settings = [&](bool forward, const std::string& output_path) {
     TmrMapperOptions o = mapper;
     o.output_path = output_path;
-    if (forward) o.mapper = ForwardMotionMapperOptions(o.mapper, keep_intrinsics);
+    if (forward)
+      o.mapper = ForwardMotionMapperOptions(o.mapper, keep_intrinsics);
     return o;
   };
   const bool forward = options.capture == "forward" ||
-                       (options.capture == "auto" && motion.MostlyForward());
+                       (options.capture == "auto" &&
+                        motion.MovesForward(options.forward_motion_share));
   if (progress) {
     progress(std::to_string(motion.num_forward) + " of " +
              std::to_string(motion.num_pairs) +
@@ -101,18 +104,17 @@ bool MapPhotos(const ReconstructImagesOptions& options,
   fs::remove_all(second_path, ec);
   if (progress) {
     progress("registered " + std::to_string(registered) + " of " +
-             std::to_string(report->num_images) + " photos: mapping again with " +
-             SettingsName(!forward) + " settings");
+             std::to_string(report->num_images) +
+             " photos: mapping again with " + SettingsName(!forward) +
+             " settings");
   }
   TmrMapperReport second;
   std::string second_error;
-  const bool mapped =
-      RunTmrMapper(settings(!forward, second_path), &second, &second_error,
-                   progress);
-  if (mapped &&
-      (LargestModel(second) > LargestModel(report->mapper) ||
-       (LargestModel(second) == LargestModel(report->mapper) &&
-        NumRegistered(second) > registered))) {
+  const bool mapped = RunTmrMapper(settings(!forward, second_path), &second,
+                                   &second_error, progress);
+  if (mapped && (LargestModel(second) > LargestModel(report->mapper) ||
+                 (LargestModel(second) == LargestModel(report->mapper) &&
+                  NumRegistered(second) > registered))) {
     if (!ReplaceFolder(second_path, mapper.output_path, error)) return false;
     report->mapper = std::move(second);
     report->capture = forward ? "general" : "forward";
@@ -185,7 +187,7 @@ bool RunReconstructImages(
     RunWithProgress(
         matcher.thread.get(), "matched pairs",
         [&] { return CountRows(database, "SELECT COUNT(*) FROM matches"); },
-        matcher.max_pairs, progress);
+        matcher.max_pairs, !matcher.max_pairs_exact, progress);
     report->matching_seconds = SecondsSince(start);
   }
   report->num_verified_pairs = static_cast<int>(CountRows(
@@ -243,18 +245,16 @@ std::string ReconstructImagesSummary(const ReconstructImagesReport& report) {
   if (report.second_pass) {
     const bool first_forward =
         (report.capture == "forward") != report.kept_second_pass;
-    out << "mapping: " << SettingsName(first_forward)
-        << " settings registered " << report.first_pass_registered << " of "
-        << report.num_images << " photos; "
-        << SettingsName(!first_forward) << " settings "
-        << (report.kept_second_pass ? "did better: kept"
-                                    : "did not do better");
+    out << "mapping: " << SettingsName(first_forward) << " settings registered "
+        << report.first_pass_registered << " of " << report.num_images
+        << " photos; " << SettingsName(!first_forward) << " settings "
+        << (report.kept_second_pass ? "did better: kept" : "did not do better");
   } else {
     out << "mapping: " << SettingsName(report.capture == "forward")
         << " settings";
   }
-  out << "\nmodels: " << report.models.size() << " ("
-      << report.mapping_seconds << " s)\n";
+  out << "\nmodels: " << report.models.size() << " (" << report.mapping_seconds
+      << " s)\n";
   for (size_t i = 0; i < report.models.size(); ++i) {
     const ModelEvaluation& m = report.models[i];
     out << "  sparse/" << i << ": " << m.num_registered_images << " images, "

@@ -36,11 +36,17 @@ void ReconstructImagesOptions::AddTo(OptionTable* t) {
   t->Add("VocabTreeMatching.vocab_tree_path", &vocab_tree_path,
          "vocabulary tree file; empty: built from the photos' features");
   t->Add("vocab_num_words", &vocab_num_words,
-         "words of the vocabulary built from the photos' features")
+         "most words of the vocabulary built from the photos' features (2 "
+         "per photo, at least 1024)")
       .AtLeast(100);
   t->Add("capture", &capture,
          "auto | general | forward (moving straight ahead): COLMAP's mapper "
          "settings for the photos");
+  t->Add("forward_motion_share", &forward_motion_share,
+         "capture auto: forward settings first when more than this share "
+         "of verified pairs move along the viewing direction")
+      .AtLeast(0)
+      .AtMost(1);
   t->Add("ImageReader.camera_model", &camera_model, "COLMAP camera model");
   t->Add("ImageReader.single_camera", &single_camera,
          "one camera for all photos");
@@ -90,8 +96,8 @@ bool ReconstructImagesOptions::Check(std::string* error) const {
     return fail("vocabulary tree '" + vocab_tree_path + "' is not a file");
   }
   if (capture != "auto" && capture != "general" && capture != "forward") {
-    return fail("--capture must be auto, general or forward, not '" +
-                capture + "'");
+    return fail("--capture must be auto, general or forward, not '" + capture +
+                "'");
   }
   if (!colmap::ExistsCameraModelWithName(camera_model))
     return fail("unknown camera model '" + camera_model + "'");

@@ -19,8 +19,10 @@ struct ForwardMotionStats {
   int num_cameras = 0;
   int num_cameras_with_prior_focal = 0;  // focal length from EXIF
 
-  // Most pairs move forward.
-  bool MostlyForward() const { return 2 * num_forward > num_pairs; }
+  // More than `share` of the pairs move forward (0.5: most of them).
+  bool MovesForward(double share) const {
+    return num_forward > share * num_pairs;
+  }
 };
 
 // Counts the pairs whose translation direction t (of cam2_from_cam1) has

@@ -21,22 +21,27 @@ struct ReconstructImagesOptions {
   // vocabulary tree, the paper's matching), "spatial" (by EXIF GPS) or
   // "auto": exhaustive up to max_exhaustive_images photos; above, sequential
   // when the names are a numbered sequence, retrieval otherwise.
-  std::string matcher = "auto";                // --matcher
-  int max_exhaustive_images = 500;             // --max_exhaustive_images
+  std::string matcher = "auto";     // --matcher
+  int max_exhaustive_images = 500;  // --max_exhaustive_images
   // Retrieval: similar photos each photo is matched with (paper: 30); also
   // the photos that sequential loop detection retrieves.
-  int retrieval_neighbors = 30;                // --retrieval_neighbors
+  int retrieval_neighbors = 30;  // --retrieval_neighbors
   // A COLMAP vocabulary tree file; empty: one is built from the photos'
-  // own features with up to vocab_num_words words.
-  std::string vocab_tree_path;           // --VocabTreeMatching.vocab_tree_path
-  int vocab_num_words = 4096;            // --vocab_num_words
+  // own features with 2 words per photo, at least 1,024 and at most
+  // vocab_num_words.
+  std::string vocab_tree_path;  // --VocabTreeMatching.vocab_tree_path
+  int vocab_num_words = 4096;   // --vocab_num_words
   // How the photos were taken, which picks COLMAP's mapper settings:
   // "general" (COLMAP's), "forward" (moving straight ahead along the
   // viewing direction: ForwardMotionMapperOptions) or "auto": forward when
   // most verified pairs move forward, and when a first mapping registers
   // fewer than half the photos, a second one with the other settings (the
   // better result is kept).
-  std::string capture = "auto";                // --capture
+  std::string capture = "auto";  // --capture
+  // With capture "auto", the forward settings come first when more than
+  // this share of the verified pairs move along the viewing direction
+  // (1: never first, only as the second mapping).
+  double forward_motion_share = 0.5;           // --forward_motion_share
   std::string camera_model = "SIMPLE_RADIAL";  // --ImageReader.camera_model
   bool single_camera = false;                  // --ImageReader.single_camera
   // One camera per folder whose photos share size and EXIF make, model
@@ -46,18 +51,18 @@ struct ReconstructImagesOptions {
   bool folder_cameras = true;  // --folder_cameras
   // Extraction as `colmap automatic_reconstructor` (its default quality,
   // "high") sets it.
-  int max_image_size = 2400;           // --FeatureExtraction.max_image_size
-  int max_num_features = 8192;         // --SiftExtraction.max_num_features
-  bool estimate_affine_shape = true;   // --SiftExtraction.estimate_affine_shape
+  int max_image_size = 2400;          // --FeatureExtraction.max_image_size
+  int max_num_features = 8192;        // --SiftExtraction.max_num_features
+  bool estimate_affine_shape = true;  // --SiftExtraction.estimate_affine_shape
   // automatic_reconstructor turns guided matching on; on the CPU it made
   // matching 7.8 times slower for the same models (docs/reconstruct.md).
-  bool guided_matching = false;        // --FeatureMatching.guided_matching
-  int sequential_overlap = 10;         // --SequentialMatching.overlap
+  bool guided_matching = false;  // --FeatureMatching.guided_matching
+  int sequential_overlap = 10;   // --SequentialMatching.overlap
   // COLMAP's default (true) pairs offsets 1, 2, 4, ... 2^(overlap-1); here
   // offsets 1 to overlap, and loop detection finds the returns.
   bool quadratic_overlap = false;  // --SequentialMatching.quadratic_overlap
   // Every tenth photo also with its retrieved ones (COLMAP's default: off).
-  bool loop_detection = true;      // --SequentialMatching.loop_detection
+  bool loop_detection = true;          // --SequentialMatching.loop_detection
   int spatial_max_num_neighbors = 50;  // --SpatialMatching.max_num_neighbors
   // Threads of every stage (-1: all cores); mapper.num_threads follows it.
   int num_threads = -1;  // --num_threads
@@ -75,8 +80,8 @@ struct ReconstructImagesOptions {
 };
 
 struct ReconstructImagesReport {
-  int num_photos = 0;          // image files found in image_path
-  int num_images = 0;          // images with features in the database
+  int num_photos = 0;  // image files found in image_path
+  int num_images = 0;  // images with features in the database
   // Cameras in the database: COLMAP's image reader gives photos with the
   // same EXIF make, model, focal length and size one camera, and every
   // other photo its own.
@@ -100,7 +105,7 @@ struct ReconstructImagesReport {
   bool second_pass = false;
   int first_pass_registered = 0;
   bool kept_second_pass = false;
-  TmrMapperReport mapper;  // of the kept models
+  TmrMapperReport mapper;               // of the kept models
   std::vector<ModelEvaluation> models;  // statistics of sparse/0, 1, ...
 };
 
