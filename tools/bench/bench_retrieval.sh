@@ -18,7 +18,9 @@
 # Environment: DATA (default ../shared/data), THREADS (default 2), SIZE
 # (default 640), FEATURES (default 2048 per view: CPU matching of 8,192
 # would take hours at 2,000 views), EXHAUSTIVE_MAX (default 500: sets up to
-# this size are also matched exhaustively), TMR_ARGS (more options).
+# this size are also matched exhaustively), MAP_MAX (default 1000: larger
+# sets are stopped after matching, their times read from the log; mapping
+# 1,000 views of one camera each took 27 min), TMR_ARGS (more options).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BIN=build/tools
@@ -28,6 +30,7 @@ THREADS="${THREADS:-2}"
 SIZE="${SIZE:-640}"
 FEATURES="${FEATURES:-2048}"
 EXHAUSTIVE_MAX="${EXHAUSTIVE_MAX:-500}"
+MAP_MAX="${MAP_MAX:-1000}"
 [[ -x "$BIN/tmr_reconstruct" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
 command -v oiiotool >/dev/null || { echo "oiiotool not found (apt-get install openimageio-tools)" >&2; exit 1; }
 [[ -d "$DATA" ]] || { echo "no photo sets at $DATA" >&2; exit 1; }
@@ -90,7 +93,18 @@ run() {
   # shellcheck disable=SC2086
   /usr/bin/time -f "%e %M" -o "$ws/log.time" "$BIN/tmr_reconstruct" "$OUT/$n/photos" "$ws" \
     --num_threads "$THREADS" --matcher "$matcher" --FeatureExtraction.max_image_size "$SIZE" \
-    --SiftExtraction.max_num_features "$FEATURES" ${TMR_ARGS:-} >"$ws/log" 2>&1 || true
+    --SiftExtraction.max_num_features "$FEATURES" ${TMR_ARGS:-} >"$ws/log" 2>&1 &
+  local pid=$!
+  # Above MAP_MAX views the run is stopped once matching is done (the line
+  # that chooses the mapper settings follows it).
+  while [[ $n -gt $MAP_MAX ]] && kill -0 "$pid" 2>/dev/null; do
+    if grep -q "move along the viewing direction: mapping" "$ws/log"; then
+      pkill -TERM -P "$pid" tmr_reconstruct || true
+      break
+    fi
+    sleep 2
+  done
+  wait "$pid" || true
 }
 
 sizes=("$@")
@@ -118,10 +132,15 @@ num = lambda p, s=summary: float(re.search(p, s).group(1)) if re.search(p, s) el
 extraction = num(r"with features: \d+ \(([0-9.]+) s\)")
 matching = num(r"matching[:,] .*?([0-9.]+) s\)")
 vocabulary = num(r"vocabulary tree built in ([0-9.]+) s", log)
-def pairs(db, verified):
-    c = sqlite3.connect(f"file:{db}?immutable=1", uri=True)
+if not summary:  # stopped after matching (MAP_MAX): times from the log's stamps
+    stamp = lambda p: num(r"\[tmr +([0-9.]+) s\] " + p, log)
+    extraction = stamp("(?:building a vocabulary|matching \\d+ images)")
+    matching = stamp(r".*move along the viewing direction: mapping") - extraction
+def pairs(db, verified):  # by image names: extraction numbers images in the order they finish
+    c = sqlite3.connect(f"file:{db}?mode=ro", uri=True)  # reads a stopped run's WAL too
+    names = dict(c.execute("SELECT image_id, name FROM images"))
     q = "SELECT pair_id FROM two_view_geometries WHERE rows >= 15" if verified else "SELECT pair_id FROM matches"
-    return {r[0] for r in c.execute(q)}
+    return {frozenset((names[p // 2147483647], names[p % 2147483647])) for (p,) in c.execute(q)}
 matched = len(pairs(f"{ws}/database.db", False))
 verified = pairs(f"{ws}/database.db", True)
 recall = ""
@@ -132,11 +151,13 @@ if matcher == "retrieval":
     except Exception:
         pass
 sizes = [int(m) for m in re.findall(r"sparse/\d+: (\d+) images", summary)]
-registered, largest = sum(sizes), max(sizes, default=0)
-open(csv, "a").write(f"{n},{matcher},{extraction},{vocabulary},{matching},{matching / n:.3f},{matched},{len(verified)},"
-                     f"{recall},{registered},{largest},{len(sizes)},{wall},{int(peak) // 1024}\n")
+registered, largest, models = sum(sizes), max(sizes, default=0), len(sizes)
+if not summary:  # not mapped
+    registered, largest, models = "", "", ""
+open(csv, "a").write(f"{n},{matcher},{extraction:.1f},{vocabulary:.1f},{matching:.1f},{matching / n:.3f},{matched},{len(verified)},"
+                     f"{recall},{registered},{largest},{models},{wall},{int(peak) // 1024}\n")
 print(f"{n:>6} {matcher:<10} {extraction:>9.1f} {vocabulary:>9.1f} {matching:>9.1f} {matching / n:>8.3f} {matched:>8} "
-      f"{len(verified):>8} {recall:>7} {registered:>11} {largest:>7} {len(sizes):>7}")
+      f"{len(verified):>8} {recall:>7} {registered:>11} {largest:>7} {models:>7}")
 PY
   done
 done
