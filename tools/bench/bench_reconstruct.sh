@@ -35,6 +35,8 @@ report() {
   fi
   python3 - "$@" "$json" "$CSV" <<'PY'
 import datetime, json, re, sys
+sys.path.insert(0, "tools/bench")
+from tmr_summary import stage_seconds
 name, photos, tool, log, models_dir, gt, json_path, csv = sys.argv[1:9]
 wall, peak = open(log + ".time").read().split()[-2:]
 total, peak = float(wall), int(peak) // 1024
@@ -44,9 +46,7 @@ if tool == "tmr_reconstruct":
         summary = open(models_dir + "/../summary.txt").read()
     except OSError:
         summary = ""
-    nums = lambda pattern: float(re.search(pattern, summary).group(1)) if re.search(pattern, summary) else float("nan")
-    extraction = nums(r"with features: \d+ \(([0-9.]+) s\)")
-    matching = nums(r"matching[:,] .*?([0-9.]+) s\)")
+    extraction, matching = stage_seconds(summary)
     mapping = total - extraction - matching
 else:  # glog time stamps of automatic_reconstructor's stage headings
     stamps = {}

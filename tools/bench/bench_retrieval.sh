@@ -123,17 +123,17 @@ for n in "${sizes[@]}"; do
   for matcher in "${matchers[@]}"; do
     python3 - "$OUT/$n" "$matcher" "$n" "$CSV" <<'PY'
 import re, sqlite3, sys
+sys.path.insert(0, "tools/bench")
+from tmr_summary import first_number, stage_seconds
 base, matcher, n, csv = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 ws = f"{base}/{matcher}"
 log = open(f"{ws}/log").read()
 summary = open(f"{ws}/summary.txt").read() if re.search("registered:", log) else ""
 wall, peak = open(f"{ws}/log.time").read().split()[-2:]
-num = lambda p, s=summary: float(re.search(p, s).group(1)) if re.search(p, s) else float("nan")
-extraction = num(r"with features: \d+ \(([0-9.]+) s\)")
-matching = num(r"matching[:,] .*?([0-9.]+) s\)")
-vocabulary = num(r"vocabulary tree built in ([0-9.]+) s", log)
+extraction, matching = stage_seconds(summary)
+vocabulary = first_number(r"vocabulary tree built in ([0-9.]+) s", log)
 if not summary:  # stopped after matching (MAP_MAX): times from the log's stamps
-    stamp = lambda p: num(r"\[tmr +([0-9.]+) s\] " + p, log)
+    stamp = lambda p: first_number(r"\[tmr +([0-9.]+) s\] " + p, log)
     extraction = stamp("(?:building a vocabulary|matching \\d+ images)")
     matching = stamp(r".*move along the viewing direction: mapping") - extraction
 def pairs(db, verified):  # by image names: extraction numbers images in the order they finish
