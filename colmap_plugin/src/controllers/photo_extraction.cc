@@ -14,6 +14,7 @@
 
 #include "controllers/controller_progress.h"
 #include "controllers/photo_matching.h"
+#include "io/image_numbering.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -172,6 +173,16 @@ void ExtractPhotoFeatures(
   }
   for (const auto& [folder, subset] : shared) extract(subset, true);
   extract(others, false);
+  // Ids by name, not by which extraction thread finished first. Without
+  // it the run goes on, only not repeatable.
+  bool renumbered = false;
+  std::string numbering_error;
+  if (!NumberImagesByName(database, &renumbered, &numbering_error) &&
+      progress) {
+    progress("warning: " + numbering_error +
+             "; the images keep the ids of extraction order");
+  }
+  if (renumbered && progress) progress("numbered the images by name");
   report->extraction_seconds = SecondsSince(start);
 }
 

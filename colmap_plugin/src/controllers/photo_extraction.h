@@ -49,7 +49,10 @@ bool ListPhotos(const std::string& folder, std::vector<std::string>* names,
 // COLMAP's SIFT extraction (CPU) of the photos `names` of options.image_path
 // into the workspace database; COLMAP skips photos already there. With
 // options.folder_cameras, the photos of FoldersOfOneCamera share one camera
-// per folder. Sets report's extraction_seconds and num_folder_cameras.
+// per folder. Then numbers the images by name (NumberImagesByName), so that
+// the same photos give the same database; when that fails, `progress` gets
+// a warning and the ids stay. Sets report's extraction_seconds and
+// num_folder_cameras.
 void ExtractPhotoFeatures(
     const ReconstructImagesOptions& options,
     const std::vector<std::string>& names, ReconstructImagesReport* report,

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "controllers/controller_progress.h"
+#include "controllers/tmr_mapper_options.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -192,6 +193,10 @@ bool CreatePhotoMatcher(
   matching.num_threads = options.num_threads;
   matching.guided_matching = options.guided_matching;
   colmap::TwoViewGeometryOptions geometry;
+  // Seeded RANSAC: the same photos verify into the same two-view
+  // geometries whichever matching thread takes a pair (unseeded, each
+  // thread draws from its own generator).
+  geometry.ransac_options.random_seed = ColmapSeed(options.mapper.tree.seed);
   const int64_t n = num_images;
   const int64_t all_pairs = n * (n - 1) / 2;
   // COLMAP retrieves the query photo itself first.

@@ -137,6 +137,10 @@ bool TmrMapperOptions::Check(std::string* error) const {
   return match_graph.Check(error) && tree.Check(error);
 }
 
+int ColmapSeed(uint64_t seed) {
+  return static_cast<int>(seed % std::numeric_limits<int>::max());
+}
+
 colmap::IncrementalPipelineOptions ColmapOptions(
     const TmrMapperOptions& options, int num_threads) {
   const MapperPassThroughOptions& m = options.mapper;
@@ -162,8 +166,7 @@ colmap::IncrementalPipelineOptions ColmapOptions(
   o.ba_local_max_refinements = m.ba_local_max_refinements;
   o.ba_local_function_tolerance = m.ba_local_function_tolerance;
   o.num_threads = options.task.repeatable ? 1 : num_threads;
-  o.random_seed =
-      static_cast<int>(options.tree.seed % std::numeric_limits<int>::max());
+  o.random_seed = ColmapSeed(options.tree.seed);
   return o;
 }
 

@@ -10,6 +10,10 @@
 
 namespace tmr {
 
+// COLMAP's random_seed (an int, -1 meaning "from the clock") for tmr's
+// seed: options.tree.seed folded into [0, INT_MAX).
+int ColmapSeed(uint64_t seed);
+
 // COLMAP's mapper options with tmr_mapper's pass-through values, seeded
 // with options.tree.seed (COLMAP 4's random_seed), on `num_threads` threads
 // (one when options.task.repeatable: the same seed then gives the same models).
