@@ -51,8 +51,7 @@ class ImageNumberingTest : public ::testing::Test {
       frame.AddDataId(image.DataId());
       database->WriteFrame(frame);
       const int n = 10 + static_cast<int>(image.ImageId());
-      database->WriteKeypoints(image.ImageId(),
-                               colmap::FeatureKeypoints(n));
+      database->WriteKeypoints(image.ImageId(), colmap::FeatureKeypoints(n));
       colmap::FeatureDescriptors descriptors;
       descriptors.type = colmap::FeatureExtractorType::SIFT;
       descriptors.data.setConstant(n, 128, image.ImageId());
@@ -93,7 +92,8 @@ TEST_F(ImageNumberingTest, IdsFollowNamesAndEverythingFollowsTheImages) {
     EXPECT_EQ(image.Name(), expected[i].first);
     EXPECT_EQ(image.CameraId(), static_cast<colmap::camera_t>(old_id));
     EXPECT_EQ(database->ReadKeypoints(id).size(), 10u + old_id);
-    const colmap::FeatureDescriptors descriptors = database->ReadDescriptors(id);
+    const colmap::FeatureDescriptors descriptors =
+        database->ReadDescriptors(id);
     EXPECT_EQ(descriptors.type, colmap::FeatureExtractorType::SIFT);
     ASSERT_EQ(descriptors.data.rows(), 10 + old_id);
     EXPECT_EQ(descriptors.data(0, 0), old_id);

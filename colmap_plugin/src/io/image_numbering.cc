@@ -120,8 +120,9 @@ bool NumberImagesByName(const std::string& database_path, bool* renumbered,
           source->NumVerifiedImagePairs() > 0)
         return true;
       std::vector<colmap::Image> by_name = source->ReadAllImages();
-      std::sort(by_name.begin(), by_name.end(),
-                [](const auto& a, const auto& b) { return a.Name() < b.Name(); });
+      std::sort(
+          by_name.begin(), by_name.end(),
+          [](const auto& a, const auto& b) { return a.Name() < b.Name(); });
       if (InNameOrder(by_name)) return true;
       std::shared_ptr<colmap::Database> target =
           colmap::Database::Open(partial);
