@@ -112,7 +112,8 @@ bool NumberImagesByName(const std::string& database_path, bool* renumbered,
   }
   try {
     std::error_code ec;
-    fs::remove(partial, ec);  // left by an interrupted run
+    for (const char* suffix : {"", "-wal", "-shm"})  // of a killed run
+      fs::remove(partial.string() + suffix, ec);
     {
       std::shared_ptr<colmap::Database> source =
           colmap::Database::Open(database_path);
