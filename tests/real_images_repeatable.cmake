@@ -48,15 +48,11 @@ if(num_models EQUAL 0)
   message(FATAL_ERROR "run a wrote no model")
 endif()
 foreach(model ${models})
-  foreach(file cameras.bin images.bin points3D.bin rigs.bin frames.bin)
-    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
-                    ${WORK_DIR}/a/sparse/${model}/${file}
-                    ${WORK_DIR}/b/sparse/${model}/${file}
-                    RESULT_VARIABLE differ)
-    if(differ)
-      message(FATAL_ERROR "model ${model}: ${file} differs between two runs "
-                          "on the same photos")
-    endif()
-  endforeach()
+  differing_model_file(${WORK_DIR}/a/sparse/${model} ${WORK_DIR}/b/sparse/${model}
+                       file)
+  if(file)
+    message(FATAL_ERROR "model ${model}: ${file} differs between two runs "
+                        "on the same photos")
+  endif()
 endforeach()
 message(STATUS "${num_models} model(s), identical in both runs; image ids by name")

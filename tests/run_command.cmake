@@ -132,3 +132,20 @@ function(expect_as_good_as_stock prefix label)
   endif()
   expect_rotation_no_worse(${${prefix}_rotation} ${stock_rotation} 125 10000 "${label}")
 endfunction()
+
+# differing_model_file(MODEL_A MODEL_B OUT): the first file of a COLMAP
+# binary model (cameras, images, points3D, rigs, frames) that differs
+# between the folders MODEL_A and MODEL_B, in OUT; empty when every one is
+# byte-identical.
+function(differing_model_file model_a model_b out)
+  foreach(file cameras.bin images.bin points3D.bin rigs.bin frames.bin)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+                    ${model_a}/${file} ${model_b}/${file}
+                    RESULT_VARIABLE differ)
+    if(differ)
+      set(${out} ${file} PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set(${out} "" PARENT_SCOPE)
+endfunction()

@@ -28,17 +28,13 @@ endif()
 string(JSON num_models LENGTH "${report1}" model_sizes)
 math(EXPR last "${num_models} - 1")
 foreach(k RANGE ${last})
-  foreach(file cameras.bin images.bin points3D.bin rigs.bin frames.bin)
-    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
-                    ${WORK_DIR}/run1/${k}/${file} ${WORK_DIR}/run2/${k}/${file}
-                    RESULT_VARIABLE differ)
-    if(differ)
-      # Say by how much the images moved, for the failure message.
-      execute_process(COMMAND ${TMR_EVAL} --gt ${WORK_DIR}/run1/${k}
-                      --model ${WORK_DIR}/run2/${k} OUTPUT_VARIABLE eval)
-      message(FATAL_ERROR "model ${k}: ${file} differs between two runs "
-                          "with the same seed:\n${eval}")
-    endif()
-  endforeach()
+  differing_model_file(${WORK_DIR}/run1/${k} ${WORK_DIR}/run2/${k} file)
+  if(file)
+    # Say by how much the images moved, for the failure message.
+    execute_process(COMMAND ${TMR_EVAL} --gt ${WORK_DIR}/run1/${k}
+                    --model ${WORK_DIR}/run2/${k} OUTPUT_VARIABLE eval)
+    message(FATAL_ERROR "model ${k}: ${file} differs between two runs "
+                        "with the same seed:\n${eval}")
+  endif()
 endforeach()
 message(STATUS "${num_models} models, identical in both runs")
