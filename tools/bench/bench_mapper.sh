@@ -14,7 +14,9 @@
 #          places of about 75 images each), or plazasN, e.g. plazas8 plazas16
 #          (overlapping plazas of 120 photos whose clusters share few tracks,
 #          detection 0.35). A suffix sN picks tmr_synth's seed N (default
-#          0), e.g. city1s3 for the city block of seed 3. Default: city1
+#          0), e.g. city1s3 for the city block of seed 3; a suffix v has
+#          `colmap geometric_verifier` verify the matches again, as a user's
+#          matcher would (plazas8v, the scene of issue 42). Default: city1
 #          places4.
 # Environment: THREADS (default 2); REUSE=1 scores earlier runs again instead
 # of repeating them; TOOLS (default "colmap_mapper colmap_hierarchical
@@ -94,7 +96,12 @@ for scene in "${scenes[@]}"; do
   if [[ ! -f "$dir/database.db" ]]; then
     rm -rf "$dir" && mkdir -p "$dir/images"
     # shellcheck disable=SC2046
-    "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "$scene")
+    "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "${scene%v}")
+    if [[ $scene == *v ]]; then  # two-view geometries verified again by COLMAP
+      sqlite3 "$dir/database.db" "DELETE FROM two_view_geometries"
+      "$COLMAP" geometric_verifier --database_path "$dir/database.db" --num_threads "$THREADS" \
+        >"$dir/geometric_verifier.log" 2>&1
+    fi
   fi
   images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
   for tool in ${TOOLS:-colmap_mapper colmap_hierarchical colmap_global tmr_mapper}; do
@@ -144,6 +151,21 @@ for scene in "${scenes[@]}"; do
           --output_path "$out" --Mapper.num_threads "$THREADS" "${paper_args[@]}" ${TMR_ARGS:-}) ;;
     esac
     score "$tool" "$scene" "$images" "$tool" "$wall" "$peak" "$out"
+    if [[ $tool == tmr_mapper* && -f "$out/report.json" ]]; then  # where the time went (issue 42)
+      python3 - "$out/report.json" "$wall" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+if "projected_wall_s" not in r:  # a report of a build before issue 42
+    sys.exit(0)
+after = r["total_s"] - r["tasks_end_s"]
+proj = r["projected_wall_s"]
+print("           tasks end at %.0f s; %.0f s after them (%.0f%% of the run); critical path %.0f s; "
+      "replayed on 2/4/8/16/64 workers: %s s (measured %s s); 2 -> 16 workers: %.2fx"
+      % (r["tasks_end_s"], after, 100 * r["after_tasks_share"], r["critical_path_s"],
+         "/".join("%.0f" % proj[w] for w in ("2", "4", "8", "16", "64")), sys.argv[2],
+         proj["2"] / proj["16"]))
+PY
+    fi
     if [[ $tool == tmr_mapper* && -f "$out/tree.json" ]]; then  # the partition, for issue 25
       python3 - "$out/tree.json" "$out.log" <<'PY'
 import collections, json, re, sys

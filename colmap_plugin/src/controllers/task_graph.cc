@@ -30,14 +30,13 @@ void TaskGraph::Run(int num_workers) {
     waiting_on[t] = static_cast<int>(tasks_[t].depends.size());
     for (const int d : tasks_[t].depends) dependents[d].push_back(t);
   }
-  // Priority: the costliest path from the task to the end of the graph.
-  // Dependencies always have smaller ids, so one backward pass suffices.
-  std::vector<double> priority(n, 0.0);
-  for (int t = n - 1; t >= 0; --t) {
-    double tail = 0.0;
-    for (const int d : dependents[t]) tail = std::max(tail, priority[d]);
-    priority[t] = tasks_[t].cost + tail;
+  std::vector<double> costs(n);
+  std::vector<std::vector<int>> depends(n);
+  for (int t = 0; t < n; ++t) {
+    costs[t] = tasks_[t].cost;
+    depends[t] = tasks_[t].depends;
   }
+  const std::vector<double> priority = PathPriorities(costs, depends);
   std::vector<int> ready;
   for (int t = 0; t < n; ++t)
     if (waiting_on[t] == 0) ready.push_back(t);
@@ -84,6 +83,79 @@ void TaskGraph::Run(int num_workers) {
     threads.emplace_back(worker);
   for (std::thread& thread : threads) thread.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+std::vector<double> PathPriorities(
+    const std::vector<double>& costs,
+    const std::vector<std::vector<int>>& depends) {
+  // The costliest path from the task to the end of the graph. Dependencies
+  // always have smaller ids, so one backward pass suffices.
+  const int n = static_cast<int>(costs.size());
+  std::vector<double> priority(costs);
+  for (int t = n - 1; t >= 0; --t) {
+    for (const int d : depends[t]) {
+      if (d < 0 || d >= t)
+        throw std::invalid_argument("PathPriorities: dependency order");
+      priority[d] = std::max(priority[d], costs[d] + priority[t]);
+    }
+  }
+  return priority;
+}
+
+double ScheduledWallTime(const std::vector<double>& seconds,
+                         const std::vector<std::vector<int>>& depends,
+                         int num_workers) {
+  const int n = static_cast<int>(seconds.size());
+  if (n == 0) return 0.0;
+  const std::vector<double> priority = PathPriorities(seconds, depends);
+  std::vector<double> end(n, 0.0);
+  std::vector<int> waiting_on(n);
+  std::vector<std::vector<int>> dependents(n);
+  for (int t = 0; t < n; ++t) {
+    waiting_on[t] = static_cast<int>(depends[t].size());
+    for (const int d : depends[t]) dependents[d].push_back(t);
+  }
+  // Event simulation: a worker that frees up takes the ready task of the
+  // highest priority (ties to the smaller id), as TaskGraph::Run does.
+  const int workers = num_workers > 0 ? std::min(num_workers, n) : n;
+  std::vector<double> free_at(workers, 0.0);
+  std::vector<int> ready;
+  for (int t = 0; t < n; ++t)
+    if (waiting_on[t] == 0) ready.push_back(t);
+  // Tasks started, by end time, whose dependents are not released yet.
+  std::vector<int> running;
+  double now = 0.0, wall = 0.0;
+  int done = 0;
+  while (done < n) {
+    // Start what the free workers can take now.
+    for (double& free : free_at) {
+      if (free > now || ready.empty()) continue;
+      const auto best =
+          std::max_element(ready.begin(), ready.end(), [&](int a, int b) {
+            return priority[a] < priority[b] ||
+                   (priority[a] == priority[b] && a > b);
+          });
+      const int t = *best;
+      ready.erase(best);
+      end[t] = now + seconds[t];
+      free = end[t];
+      running.push_back(t);
+    }
+    // Advance to the next end of a running task and release its dependents.
+    if (running.empty())
+      throw std::logic_error("ScheduledWallTime: nothing runs");
+    const auto next =
+        std::min_element(running.begin(), running.end(),
+                         [&](int a, int b) { return end[a] < end[b]; });
+    const int t = *next;
+    running.erase(next);
+    now = end[t];
+    wall = std::max(wall, now);
+    ++done;
+    for (const int d : dependents[t])
+      if (--waiting_on[d] == 0) ready.push_back(d);
+  }
+  return wall;
 }
 
 }  // namespace tmr

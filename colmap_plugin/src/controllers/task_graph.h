@@ -46,4 +46,20 @@ class TaskGraph {
   std::vector<Task> tasks_;
 };
 
+// Critical-path priorities of a task graph whose dependencies have smaller
+// ids: a task's own cost plus the largest priority among its dependents.
+std::vector<double> PathPriorities(
+    const std::vector<double>& costs,
+    const std::vector<std::vector<int>>& depends);
+
+// The wall time of tasks that take `seconds` each, run after `depends`
+// (smaller ids) on `num_workers` workers with TaskGraph::Run's scheduling,
+// the durations taken for the costs: a replay of a run's recorded task
+// times on another number of cores. Each task keeps its duration whatever
+// the workers (tmr_mapper runs every COLMAP step on one thread by default).
+// num_workers <= 0: unlimited, the critical path.
+double ScheduledWallTime(const std::vector<double>& seconds,
+                         const std::vector<std::vector<int>>& depends,
+                         int num_workers);
+
 }  // namespace tmr

@@ -103,5 +103,43 @@ TEST(TaskGraph, EmptyGraphReturns) {
   SUCCEED();
 }
 
+TEST(ScheduledWallTime, ReplaysTasksOnAnyNumberOfWorkers) {
+  // Two kernels (4 s, 2 s), their leaves (3 s, 3 s; 1 s), a merge per
+  // kernel (1 s) and a serial tail (2 s) after both merges.
+  const std::vector<double> seconds = {4, 2, 3, 3, 1, 1, 1, 2};
+  const std::vector<std::vector<int>> depends = {
+      {}, {}, {0}, {0}, {1}, {0, 2, 3}, {1, 4}, {5, 6}};
+  // Unlimited workers: the longest chain, kernel 0, a leaf, its merge, the
+  // tail.
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 0), 4 + 3 + 1 + 2);
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 64), 10);
+  // One worker: the sum.
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 1), 17);
+  // Two workers: kernel 0 and kernel 1 start together; at 2 s the second
+  // worker takes leaf 1.0, at 3 s merge 1; at 4 s both leaves of kernel 0
+  // start, at 7 s its merge, at 8 s the tail.
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 2), 10);
+}
+
+TEST(ScheduledWallTime, BetweenTheCriticalPathAndOneWorker) {
+  std::vector<double> seconds;
+  std::vector<std::vector<int>> depends;
+  for (int t = 0; t < 40; ++t) {
+    seconds.push_back(1 + (t * 7) % 5);
+    depends.push_back(t >= 3 ? std::vector<int>{t / 3} : std::vector<int>{});
+  }
+  const double path = ScheduledWallTime(seconds, depends, 0);
+  double sum = 0.0;
+  for (const double s : seconds) sum += s;
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 1), sum);
+  for (const int workers : {2, 4, 8, 16}) {
+    const double wall = ScheduledWallTime(seconds, depends, workers);
+    EXPECT_LE(wall, sum);
+    EXPECT_GE(wall, path);
+  }
+  // As many workers as tasks: every task starts when it is ready.
+  EXPECT_DOUBLE_EQ(ScheduledWallTime(seconds, depends, 64), path);
+}
+
 }  // namespace
 }  // namespace tmr

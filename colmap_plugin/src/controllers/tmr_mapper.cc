@@ -51,10 +51,18 @@ int NumThreads(const TmrMapperOptions& options) {
                    std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// report.json, and the work folder removed unless keep_work.
+// report.json, and the work folder removed unless keep_work. With
+// `timeline` (the one-process run, whose rows carry the task graph's
+// timing), the timeline is summarised first.
 void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
-            Clock::time_point start, TmrMapperReport* report) {
+            Clock::time_point start, bool timeline,
+            const std::function<void(const std::string&)>& progress,
+            TmrMapperReport* report) {
   report->total_seconds = SecondsSince(start);
+  if (timeline) {
+    SummarizeTimeline(NumThreads(o), report);
+    if (progress) progress(DescribeTimeline(*report));
+  }
   WriteFileAtomically((fs::path(o.output_path) / "report.json").string(),
                       ReportJson(*report));
   if (!o.keep_work) fs::remove_all(stages.work().folder());
@@ -95,7 +103,7 @@ class TmrMapperRun {
         threads_(NumThreads(options)) {}
 
   bool Run(std::string* error) {
-    const auto start = Clock::now();
+    start_ = Clock::now();
     if (!stages_.Plan(
             report_, [this](const std::string& l) { Progress(l); }, error))
       return false;
@@ -108,7 +116,7 @@ class TmrMapperRun {
             [this](const TmrTaskReport& t) { Record(t); },
             [this](const std::string& l) { Progress(l); }, report_, error))
       return false;
-    Finish(o_, stages_, start, report_);
+    Finish(o_, stages_, start_, /*timeline=*/true, progress_, report_);
     return true;
   }
 
@@ -123,10 +131,23 @@ class TmrMapperRun {
     if (progress_) progress_(line);
   }
 
-  // Reports a finished task; `weight` (images) drives the ETA of the task
-  // graph, 0 for steps outside it.
-  void Record(const TmrTaskReport& task, double weight = 0.0) {
+  // Reports a step that has just finished: node `node` of the task graph,
+  // or (-1) a step of the scene assembly after it. `weight` (images) drives
+  // the ETA of the task graph.
+  void Record(TmrTaskReport task, int node = -1, double weight = 0.0) {
     std::lock_guard<std::mutex> lock(mutex_);
+    task.start_s = std::max(0.0, SecondsSince(start_) - task.seconds);
+    task.in_task_graph = node >= 0;
+    const int row = static_cast<int>(report_->tasks.size());
+    if (node >= 0) {
+      for (const int d : node_depends_[node])
+        if (row_of_node_[d] >= 0) task.depends.push_back(row_of_node_[d]);
+      row_of_node_[node] = row;
+    } else if (row > 0 && !report_->tasks.back().in_task_graph) {
+      task.depends = {row - 1};  // the assembly's steps form one chain
+    } else {
+      for (int r = 0; r < row; ++r) task.depends.push_back(r);
+    }
     report_->tasks.push_back(task);
     done_weight_ += weight;
     if (!progress_) return;
@@ -154,9 +175,17 @@ class TmrMapperRun {
     clusters_.assign(tree.kernels.size(), nullptr);
     TaskGraph graph;
     std::string cache_error;
-    const int cache = graph.Add({"load correspondences", 1e12, {}, [&](int) {
-                                   cache_ = stages_.LoadCache(&cache_error);
-                                 }});
+    const int cache = AddNode(
+        &graph, {"load correspondences", 1e12, {}, [&](int) {
+                   const auto load_start = Clock::now();
+                   cache_ = stages_.LoadCache(&cache_error);
+                   if (cache_) {
+                     const int n = static_cast<int>(tree.image_ids.size());
+                     Record({"load correspondences", n, n,
+                             SecondsSince(load_start), true, ""},
+                            /*node=*/0);  // the first node
+                   }
+                 }});
     std::vector<std::vector<int>> merge_depends(tree.kernels.size(), {cache});
     std::vector<int> kernel_node(tree.kernels.size(), -1);
     total_weight_ = done_weight_ = 0.0;
@@ -165,7 +194,9 @@ class TmrMapperRun {
     for (const TmrMapperTask& task : stages_.Tasks()) {
       const double weight = task.num_images;
       total_weight_ += weight;
-      auto run = [this, task, weight, &error_mutex, &task_error](int threads) {
+      const int node = graph.NumTasks();
+      auto run = [this, task, weight, node, &error_mutex,
+                  &task_error](int threads) {
         TmrTaskReport row;
         std::string e;
         if (!stages_.RunTask(task, threads, &row, &e)) {
@@ -173,29 +204,40 @@ class TmrMapperRun {
           if (task_error.empty()) task_error = task.id + ": " + e;
           return;
         }
-        Record(row, weight);
+        Record(row, node, weight);
       };
       const bool kernel = task.leaf < 0;
-      const int id =
-          graph.Add({kernel ? "kernel" : "leaf",
-                     kernel ? weight : weight + 0.3 * task.num_base_images,
-                     kernel ? std::vector<int>{}
-                            : std::vector<int>{kernel_node[task.kernel]},
-                     run});
+      const int id = AddNode(
+          &graph, {kernel ? "kernel" : "leaf",
+                   kernel ? weight : weight + 0.3 * task.num_base_images,
+                   kernel ? std::vector<int>{}
+                          : std::vector<int>{kernel_node[task.kernel]},
+                   run});
       if (kernel) kernel_node[task.kernel] = id;
       merge_depends[task.kernel].push_back(id);
     }
     for (int k = 0; k < static_cast<int>(tree.kernels.size()); ++k) {
-      graph.Add(ClusterMergeTask(
-          stages_, k, merge_depends[k], &cache_,
-          [this](const std::string& note) { Progress(note); },
-          [this](const TmrTaskReport& row) { Record(row); }, &clusters_[k]));
+      const int node = graph.NumTasks();
+      AddNode(&graph,
+              ClusterMergeTask(
+                  stages_, k, merge_depends[k], &cache_,
+                  [this](const std::string& note) { Progress(note); },
+                  [this, node](const TmrTaskReport& row) { Record(row, node); },
+                  &clusters_[k]));
     }
     graph_start_ = Clock::now();
     graph.Run(threads_);
     if (!cache_) return Fail(cache_error, error);
     if (!task_error.empty()) return Fail(task_error, error);
     return true;
+  }
+
+  // Adds a task to the graph and remembers its dependencies for the
+  // report's rows.
+  int AddNode(TaskGraph* graph, TaskGraph::Task task) {
+    node_depends_.push_back(task.depends);
+    row_of_node_.push_back(-1);
+    return graph->Add(std::move(task));
   }
 
   const TmrMapperOptions& o_;
@@ -207,7 +249,11 @@ class TmrMapperRun {
   std::vector<std::shared_ptr<colmap::Reconstruction>> clusters_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
   std::mutex mutex_;
-  Clock::time_point graph_start_;
+  // The task graph's dependencies, and the report row of each node that
+  // has finished (-1 before).
+  std::vector<std::vector<int>> node_depends_;
+  std::vector<int> row_of_node_;
+  Clock::time_point start_, graph_start_;
   double total_weight_ = 0.0, done_weight_ = 0.0;
 };
 
@@ -310,7 +356,7 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
   if (!stages.AssembleAndWrite(std::move(clusters), cache, threads, record,
                                progress, report, error))
     return false;
-  Finish(effective, stages, start, report);
+  Finish(effective, stages, start, /*timeline=*/false, progress, report);
   return true;
 }
 

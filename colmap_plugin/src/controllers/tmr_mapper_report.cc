@@ -1,7 +1,12 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "controllers/tmr_mapper_report.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <limits>
 #include <sstream>
+
+#include "controllers/task_graph.h"
 
 namespace tmr {
 namespace {
@@ -15,13 +20,30 @@ std::string JsonEscaped(const std::string& text) {
   return escaped;
 }
 
+// The share of the wall time after the last task of the task graph; 0
+// without a timeline (SummarizeTimeline).
+double AfterTasksShare(const TmrMapperReport& r) {
+  return r.total_seconds > 0 && r.tasks_end_s > 0
+             ? std::max(0.0, r.total_seconds - r.tasks_end_s) / r.total_seconds
+             : 0.0;
+}
+
 }  // namespace
 
 std::string ReportJson(const TmrMapperReport& r) {
   std::ostringstream out;
   out << "{\"num_images\": " << r.num_images
       << ", \"partition_s\": " << r.partition_seconds
-      << ", \"total_s\": " << r.total_seconds << ", \"model_sizes\": [";
+      << ", \"total_s\": " << r.total_seconds
+      << ", \"tasks_end_s\": " << r.tasks_end_s
+      << ", \"after_tasks_share\": " << AfterTasksShare(r)
+      << ", \"critical_path_s\": " << r.critical_path_s
+      << ", \"projected_wall_s\": {";
+  for (size_t i = 0; i < r.projected_wall_s.size(); ++i) {
+    out << (i ? ", " : "") << "\"" << r.projected_wall_s[i].first
+        << "\": " << r.projected_wall_s[i].second;
+  }
+  out << "}, \"model_sizes\": [";
   for (size_t i = 0; i < r.model_sizes.size(); ++i)
     out << (i ? ", " : "") << r.model_sizes[i];
   out << "], \"tasks\": [";
@@ -33,7 +55,12 @@ std::string ReportJson(const TmrMapperReport& r) {
         << ", \"seconds\": " << t.seconds
         << ", \"success\": " << (t.success ? "true" : "false")
         << ", \"reused\": " << (t.reused ? "true" : "false")
-        << ", \"message\": \"" << JsonEscaped(t.message) << "\"}";
+        << ", \"start_s\": " << t.start_s
+        << ", \"in_task_graph\": " << (t.in_task_graph ? "true" : "false")
+        << ", \"depends\": [";
+    for (size_t d = 0; d < t.depends.size(); ++d)
+      out << (d ? ", " : "") << t.depends[d];
+    out << "], \"message\": \"" << JsonEscaped(t.message) << "\"}";
   }
   out << "\n], \"weak_links\": [";
   for (size_t i = 0; i < r.weak_links.size(); ++i) {
@@ -48,6 +75,48 @@ std::string ReportJson(const TmrMapperReport& r) {
   }
   out << "\n]}\n";
   return out.str();
+}
+
+void SummarizeTimeline(int num_workers, TmrMapperReport* r) {
+  const int n = static_cast<int>(r->tasks.size());
+  std::vector<double> seconds(n);
+  std::vector<std::vector<int>> depends(n);
+  double first_start = std::numeric_limits<double>::max();
+  r->tasks_end_s = 0.0;
+  for (int t = 0; t < n; ++t) {
+    const TmrTaskReport& row = r->tasks[t];
+    seconds[t] = row.reused ? 0.0 : row.seconds;
+    depends[t] = row.depends;
+    if (row.in_task_graph) {
+      first_start = std::min(first_start, row.start_s);
+      r->tasks_end_s = std::max(r->tasks_end_s, row.start_s + seconds[t]);
+    }
+  }
+  const double before = r->tasks_end_s > 0 ? first_start : 0.0;
+  const double unaccounted =
+      std::max(0.0, r->total_seconds - before -
+                        ScheduledWallTime(seconds, depends, num_workers));
+  r->critical_path_s =
+      before + ScheduledWallTime(seconds, depends, 0) + unaccounted;
+  r->projected_wall_s.clear();
+  for (const int workers : {2, 4, 8, 16, 64}) {
+    r->projected_wall_s.emplace_back(
+        workers,
+        before + ScheduledWallTime(seconds, depends, workers) + unaccounted);
+  }
+}
+
+std::string DescribeTimeline(const TmrMapperReport& r) {
+  double on16 = 0.0;
+  for (const auto& [workers, wall] : r.projected_wall_s)
+    if (workers == 16) on16 = wall;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "%.1f s after the parallel tasks (%.0f%% of the run); "
+                "critical path %.1f s; on 16 workers about %.1f s",
+                std::max(0.0, r.total_seconds - r.tasks_end_s),
+                100.0 * AfterTasksShare(r), r.critical_path_s, on16);
+  return line;
 }
 
 }  // namespace tmr

@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tmr/io/database_reader.h"
@@ -153,6 +154,13 @@ struct TmrTaskReport {
   bool success = false;
   std::string message;
   bool reused = false;  // finished by an earlier, killed run (Tmr.resume)
+  // When the step began, in seconds since the run started, and the rows
+  // of TmrMapperReport::tasks it waited for (all earlier in the list). A
+  // kernel, leaf or cluster-merge task (in_task_graph) ran beside others;
+  // the scene assembly's steps run one after the other on one thread.
+  double start_s = 0.0;
+  std::vector<int> depends = {};
+  bool in_task_graph = false;
 };
 
 // Two final models that verified pairs link but no merge rule joined: what
@@ -178,6 +186,14 @@ struct TmrMapperReport {
   std::vector<TmrWeakLink> weak_links;
   double partition_seconds = 0.0;
   double total_seconds = 0.0;
+  // Where the wall time went (SummarizeTimeline): when the last task of
+  // the task graph ended; the wall time with unlimited workers (what comes
+  // before the task graph, its longest chain of dependent rows, and the
+  // steps after it); and the recorded rows replayed on 2, 4, 8, 16 and 64
+  // workers (workers, projected wall time).
+  double tasks_end_s = 0.0;
+  double critical_path_s = 0.0;
+  std::vector<std::pair<int, double>> projected_wall_s;
 };
 
 // Reconstructs the database on its TMR-tree (paper Sec. 5): kernels in
