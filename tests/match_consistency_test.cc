@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
 
 #include "evaluation/evaluate_reconstruction.h"
 #include "sfm/match_consistency.h"
@@ -71,8 +72,10 @@ TEST_F(MatchConsistencyTest, AGroupPlacedWronglyIsInconsistent) {
       Eigen::Vector3d(1, -0.5, 0.2));
   const MatchConsistency c =
       CheckMatchConsistency(MoveHalf(moved), *database, options);
-  EXPECT_GT(c.num_inconsistent_pairs, options.max_inconsistent_pairs);
+  EXPECT_GT(c.num_inconsistent_pairs, 0);
   EXPECT_GT(c.InconsistentShare(), options.max_inconsistent_share);
+  std::cout << "moved half: " << 100 * c.InconsistentShare() << "%, "
+            << c.num_inconsistent_pairs << " pairs\n";
   EXPECT_FALSE(c.IsConsistent(options));
   // Its tracks still agree with its poses: only the matches across the
   // split are contradicted.
@@ -127,6 +130,7 @@ TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
   strict.max_reprojection_error = 0.01;
   strict.max_inconsistent_share = 0;
   strict.max_inconsistent_pairs = 0;
+  strict.require_third_view = false;
   colmap::IncrementalPipelineOptions mapper;
   mapper.num_threads = 1;
   const std::string task_db = (dir_ / "task.db").string();
@@ -142,6 +146,53 @@ TEST_F(MatchConsistencyTest, AKernelThatFailsTheCheckIsRedone) {
       std::string::npos)
       << result.message;
   EXPECT_TRUE(fs::is_directory(dir_ / "kernel"));
+}
+
+// One plaza of a tmr_synth plazas scene as a kernel: a camera per photo,
+// realistic detection (0.35), its matches verified again by COLMAP, whose
+// verification keeps false matches that fit a pair's estimated geometry.
+// With every match tested, the ground truth itself contradicts more than
+// the limit (all unconfirmed by a third photo), and every correct kernel
+// of plazas8 was mapped again (docs/mapper.md, "The kernel check"); tested
+// as the check tests them, it contradicts none, and a correct kernel is
+// mapped once.
+TEST(KernelCheck, ACorrectKernelVerifiedByColmapIsMappedOnce) {
+  SyntheticSceneOptions scene;
+  scene.family = "plazas";
+  scene.num_places = 1;
+  scene.cameras_per_place = 60;
+  scene.detection_probability = 0.35;
+  scene.match_probability = 0.7;
+  scene.match_angle_falloff_deg = 12;
+  std::string error;
+  const fs::path dir = WriteTestScene("kernel_check_test", scene, &error);
+  ASSERT_FALSE(dir.empty()) << error;
+  VerifyAgainWithColmap(dir / "database.db");
+  const std::string database = (dir / "database.db").string();
+  const MatchConsistencyOptions check;
+  MatchConsistencyOptions every_match = check;
+  every_match.require_third_view = false;
+  const colmap::Reconstruction gt = ReadModel((dir / "gt").string());
+  const std::shared_ptr<colmap::Database> db = colmap::Database::Open(database);
+  const MatchConsistency gt_every = CheckMatchConsistency(gt, *db, every_match);
+  EXPECT_FALSE(gt_every.IsConsistent(check))
+      << "COLMAP's verification kept no false match to be told apart";
+  const MatchConsistency gt_check = CheckMatchConsistency(gt, *db, check);
+  EXPECT_GT(gt_check.num_unconfirmed, 0);
+  EXPECT_TRUE(gt_check.IsConsistent(check))
+      << gt_check.num_inconsistent << " of " << gt_check.num_matches;
+
+  colmap::IncrementalPipelineOptions mapper;
+  mapper.num_threads = 1;
+  mapper.random_seed = 0;
+  const ReconstructionTaskResult result = RunReconstructionTask(
+      mapper, database, "", {}, &check, (dir / "kernel").string());
+  ASSERT_TRUE(result.success) << result.message;
+  EXPECT_GE(result.num_registered, 55) << result.message;
+  EXPECT_EQ(result.message.find("redo"), std::string::npos) << result.message;
+  // The wrong models of this file's other tests are still caught with
+  // confirmed matches alone: MatchConsistencyTest tests with the defaults.
+  fs::remove_all(dir);
 }
 
 }  // namespace

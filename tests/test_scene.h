@@ -2,6 +2,7 @@
 // A tmr_synth scene for a test suite's fixture.
 #pragma once
 
+#include <colmap/estimators/two_view_geometry.h>
 #include <colmap/scene/database.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
@@ -33,6 +34,35 @@ inline std::filesystem::path WriteTestScene(
     return {};
   }
   return dir;
+}
+
+// Verifies every pair's matches of a test database again with COLMAP's
+// two-view geometry (its defaults, as `colmap geometric_verifier` and the
+// matchers do): the inlier matches and F, E, H a user's database holds,
+// where tmr_synth writes its own inliers and no matrices.
+inline void VerifyAgainWithColmap(const std::filesystem::path& database) {
+  const std::shared_ptr<colmap::Database> db =
+      colmap::Database::Open(database.string());
+  const colmap::TwoViewGeometryOptions options;
+  const auto all_matches = db->ReadAllMatches();
+  db->ClearTwoViewGeometries();
+  auto points = [&](colmap::image_t id) {
+    std::vector<Eigen::Vector2d> xy;
+    for (const colmap::FeatureKeypoint& k : db->ReadKeypoints(id))
+      xy.emplace_back(k.x, k.y);
+    return xy;
+  };
+  for (const auto& [pair_id, matches] : all_matches) {
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    const colmap::Camera camera1 =
+        db->ReadCamera(db->ReadImage(id1).CameraId());
+    const colmap::Camera camera2 =
+        db->ReadCamera(db->ReadImage(id2).CameraId());
+    db->WriteTwoViewGeometry(
+        id1, id2,
+        colmap::EstimateTwoViewGeometry(camera1, points(id1), camera2,
+                                        points(id2), matches, options));
+  }
 }
 
 // COLMAP's correspondences of a test database, loaded as COLMAP's mapper

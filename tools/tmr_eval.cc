@@ -93,7 +93,12 @@ int main(int argc, char** argv) {
           ->default_value(
               options.match_consistency.min_triangulation_angle_deg),
       "with --database_path: test only matches whose rays meet at this "
-      "angle (degrees) or more");
+      "angle (degrees) or more")(
+      "match_third_view",
+      po::value(&options.match_consistency.require_third_view)
+          ->default_value(options.match_consistency.require_third_view),
+      "with --database_path: test only matches that a third photo confirms "
+      "(0: every match)");
   po::variables_map vm;
   if (const auto exit_code =
           tmr::ParseCommandLine("tmr_eval", argc, argv, desc, &vm)) {

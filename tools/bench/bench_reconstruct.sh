@@ -10,7 +10,8 @@
 #
 # Usage: tools/bench/bench_reconstruct.sh [SET ...]   (default: every set)
 # Environment: DATA (default ../shared/data), THREADS (default 2),
-# TMR_ARGS (more tmr_reconstruct options).
+# TMR_ARGS (more tmr_reconstruct options), TOOLS (default "stock tmr":
+# automatic_reconstructor and tmr_reconstruct; "tmr" runs tmr's alone).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -18,6 +19,7 @@ BIN=build/tools
 OUT=out/bench_reconstruct
 DATA="${DATA:-../shared/data}"
 THREADS="${THREADS:-2}"
+TOOLS="${TOOLS:-stock tmr}"
 [[ -x "$COLMAP" && -x "$BIN/tmr_reconstruct" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
 [[ -d "$DATA" ]] || { echo "no photo sets at $DATA" >&2; exit 1; }
 mkdir -p "$OUT"
@@ -82,10 +84,13 @@ for set in "${sets[@]}"; do
   gt=$(ground_truth "$DATA" "$set" "$OUT")
   dir="$OUT/$set"
   rm -rf "$dir" && mkdir -p "$dir/stock"
-  /usr/bin/time -f "%e %M" -o "$dir/stock.log.time" "$COLMAP" automatic_reconstructor \
-    --workspace_path "$dir/stock" --image_path "$images" --num_threads "$THREADS" \
-    --use_gpu 0 --dense 0 >"$dir/stock.log" 2>&1 || true
-  report "$set" "$photos" "colmap automatic_reconstructor" "$dir/stock.log" "$dir/stock/sparse" "$gt"
+  if [[ " $TOOLS " == *" stock "* ]]; then
+    /usr/bin/time -f "%e %M" -o "$dir/stock.log.time" "$COLMAP" automatic_reconstructor \
+      --workspace_path "$dir/stock" --image_path "$images" --num_threads "$THREADS" \
+      --use_gpu 0 --dense 0 >"$dir/stock.log" 2>&1 || true
+    report "$set" "$photos" "colmap automatic_reconstructor" "$dir/stock.log" "$dir/stock/sparse" "$gt"
+  fi
+  [[ " $TOOLS " == *" tmr "* ]] || continue
   # shellcheck disable=SC2086
   /usr/bin/time -f "%e %M" -o "$dir/tmr.log.time" "$BIN/tmr_reconstruct" "$images" "$dir/tmr" \
     --num_threads "$THREADS" ${TMR_ARGS:-} >"$dir/tmr.log" 2>&1 || true

@@ -77,8 +77,7 @@ void PrintEvaluationTable(const std::vector<ModelEvaluation>& evaluations,
         << std::setprecision(2) << 100.0 * c.InconsistentShare() << "%) and "
         << c.num_inconsistent_pairs << " of " << c.num_pairs
         << " pairs inconsistent: "
-        << (e.match_consistent ? "consistent" : "INCONSISTENT")
-        << "\n";
+        << (e.match_consistent ? "consistent" : "INCONSISTENT") << "\n";
   }
   out << std::defaultfloat
       << "(rotation in degrees; position as a share of the scene scale: the "
@@ -124,13 +123,13 @@ void WriteEvaluationJson(const std::vector<ModelEvaluation>& evaluations,
     out << "]";
     if (const auto& c = e.match_consistency) {
       out << ", \"match_consistency\": {\"matches\": " << c->num_matches
+          << ", \"unconfirmed\": " << c->num_unconfirmed
           << ", \"low_angle\": " << c->num_low_angle
           << ", \"tested\": " << c->num_tested
           << ", \"inconsistent\": " << c->num_inconsistent
           << ", \"pairs\": " << c->num_pairs
           << ", \"inconsistent_pairs\": " << c->num_inconsistent_pairs
-          << ", \"consistent\": "
-          << (e.match_consistent ? "true" : "false")
+          << ", \"consistent\": " << (e.match_consistent ? "true" : "false")
           << "}";
     }
     out << "}";

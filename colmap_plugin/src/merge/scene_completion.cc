@@ -10,6 +10,7 @@
 #include <chrono>
 #include <limits>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "controllers/tmr_mapper_options.h"
@@ -34,6 +35,43 @@ std::unordered_set<std::string> HeldImageNames(
       held.insert(model.Image(id).Name());
   }
   return held;
+}
+
+// The images outside `before` with at least `min_matched` keypoints
+// matched to keypoints of images in `before`. Only they can see that many
+// points of the scene before completion (RemoveUnanchoredImages); any other
+// image completion registers is placed on points that images registered
+// after it triangulated, and is taken out again. On plazas8 completion
+// registered 1,205 such images one by one before taking them out (issue 42).
+std::unordered_set<colmap::image_t> ImagesMatchedToScene(
+    const colmap::DatabaseCache& cache,
+    const std::unordered_map<colmap::image_t,
+                             std::vector<std::pair<colmap::image_t, int>>>&
+        image_links,
+    const std::unordered_set<colmap::image_t>& before, int min_matched) {
+  const colmap::CorrespondenceGraph& graph = *cache.CorrespondenceGraph();
+  std::unordered_set<colmap::image_t> matched;
+  for (const auto& [id, links] : image_links) {
+    if (before.count(id)) continue;
+    int upper_bound = 0;
+    for (const auto& [other, num_correspondences] : links)
+      if (before.count(other)) upper_bound += num_correspondences;
+    if (upper_bound < min_matched) continue;
+    int keypoints = 0;
+    const colmap::point2D_t num_points2D = cache.Image(id).NumPoints2D();
+    for (colmap::point2D_t idx = 0;
+         idx < num_points2D && keypoints < min_matched; ++idx) {
+      const auto range = graph.FindCorrespondences(id, idx);
+      for (const auto* corr = range.beg; corr < range.end; ++corr) {
+        if (before.count(corr->image_id)) {
+          ++keypoints;
+          break;
+        }
+      }
+    }
+    if (keypoints >= min_matched) matched.insert(id);
+  }
+  return matched;
 }
 
 }  // namespace
@@ -99,6 +137,8 @@ void SceneAssembler::CompleteScenes(Scenes* scenes,
       if (const colmap::Image* image = cache_->FindImageWithName(name))
         held_elsewhere.insert(image->ImageId());
     }
+    const std::unordered_set<colmap::image_t> reachable = ImagesMatchedToScene(
+        *cache_, image_links_, before_ids, options.abs_pose_min_num_inliers);
     colmap::IncrementalMapper mapper(cache_);
     mapper.BeginReconstruction(scene);
     // COLMAP caps the attempts per image (Mapper.max_reg_trials), so the
@@ -111,7 +151,7 @@ void SceneAssembler::CompleteScenes(Scenes* scenes,
       for (const bool structure_less : structure_less_flags) {
         for (const colmap::image_t id :
              mapper.FindNextImages(options, structure_less)) {
-          if (held_elsewhere.count(id) ||
+          if (held_elsewhere.count(id) || !reachable.count(id) ||
               !(structure_less
                     ? mapper.RegisterNextStructureLessImage(options, id)
                     : mapper.RegisterNextImage(options, id)))

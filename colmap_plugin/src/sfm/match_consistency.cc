@@ -2,11 +2,15 @@
 #include "sfm/match_consistency.h"
 
 #include <colmap/geometry/triangulation.h>
-#include <colmap/scene/projection.h>
 #include <colmap/math/math.h>
+#include <colmap/scene/projection.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace tmr {
@@ -30,6 +34,82 @@ bool MatchConsistencyOptions::Check(std::string* error) const {
   return true;
 }
 
+namespace {
+
+// A keypoint as one number: image id in the high half, keypoint index in
+// the low half.
+uint64_t KeypointKey(colmap::image_t image_id, colmap::point2D_t point2D_idx) {
+  return (static_cast<uint64_t>(image_id) << 32) | point2D_idx;
+}
+
+// The verified matches of the model's registered pairs that no common track
+// holds, as pairs of keypoint keys, and of every keypoint among them the
+// keypoints that verified matches of any pair link it to.
+struct OpenMatches {
+  std::unordered_map<uint64_t, std::vector<uint64_t>> linked;
+  bool Confirmed(uint64_t key1, uint64_t key2) const {
+    const std::vector<uint64_t>& links1 = linked.at(key1);
+    const std::vector<uint64_t>& links2 = linked.at(key2);
+    for (const uint64_t key : links1) {
+      if (key != key2 &&
+          std::find(links2.begin(), links2.end(), key) != links2.end())
+        return true;
+    }
+    return false;
+  }
+};
+
+bool InCommonTrack(const colmap::Point2D& p1, const colmap::Point2D& p2) {
+  return p1.HasPoint3D() && p1.point3D_id == p2.point3D_id;
+}
+
+bool RegisteredPair(const colmap::Reconstruction& model, colmap::image_t id1,
+                    colmap::image_t id2) {
+  return model.ExistsImage(id1) && model.ExistsImage(id2) &&
+         model.Image(id1).HasPose() && model.Image(id2).HasPose();
+}
+
+// The links of the keypoints of the open matches (two passes over the
+// matches: the keypoints first, so that memory grows with the open matches,
+// not with the database).
+OpenMatches LinkOpenMatches(
+    const colmap::Reconstruction& model,
+    const std::vector<std::pair<colmap::image_pair_t, colmap::TwoViewGeometry>>&
+        geometries) {
+  OpenMatches open;
+  for (const auto& [pair_id, geometry] : geometries) {
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    if (!RegisteredPair(model, id1, id2)) continue;
+    const colmap::Image& image1 = model.Image(id1);
+    const colmap::Image& image2 = model.Image(id2);
+    for (const colmap::FeatureMatch& match : geometry.inlier_matches) {
+      if (match.point2D_idx1 >= image1.NumPoints2D() ||
+          match.point2D_idx2 >= image2.NumPoints2D() ||
+          InCommonTrack(image1.Point2D(match.point2D_idx1),
+                        image2.Point2D(match.point2D_idx2)))
+        continue;
+      open.linked.emplace(KeypointKey(id1, match.point2D_idx1),
+                          std::vector<uint64_t>());
+      open.linked.emplace(KeypointKey(id2, match.point2D_idx2),
+                          std::vector<uint64_t>());
+    }
+  }
+  for (const auto& [pair_id, geometry] : geometries) {
+    const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
+    for (const colmap::FeatureMatch& match : geometry.inlier_matches) {
+      const uint64_t key1 = KeypointKey(id1, match.point2D_idx1);
+      const uint64_t key2 = KeypointKey(id2, match.point2D_idx2);
+      if (auto it = open.linked.find(key1); it != open.linked.end())
+        it->second.push_back(key2);
+      if (auto it = open.linked.find(key2); it != open.linked.end())
+        it->second.push_back(key1);
+    }
+  }
+  return open;
+}
+
+}  // namespace
+
 MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
                                        const colmap::Database& database,
                                        const MatchConsistencyOptions& options) {
@@ -37,14 +117,17 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
     throw std::invalid_argument("CheckMatchConsistency: " + error);
   const double max_squared_error =
       options.max_reprojection_error * options.max_reprojection_error;
-  const double min_angle = colmap::DegToRad(options.min_triangulation_angle_deg);
+  const double min_angle =
+      colmap::DegToRad(options.min_triangulation_angle_deg);
   MatchConsistency result;
-  for (const auto& [pair_id, geometry] : database.ReadTwoViewGeometries()) {
+  const auto geometries = database.ReadTwoViewGeometries();
+  const OpenMatches open = options.require_third_view
+                               ? LinkOpenMatches(model, geometries)
+                               : OpenMatches();
+  for (const auto& [pair_id, geometry] : geometries) {
     const auto [id1, id2] = colmap::PairIdToImagePair(pair_id);
     const auto& matches = geometry.inlier_matches;
-    if (matches.empty() || !model.ExistsImage(id1) || !model.ExistsImage(id2) ||
-        !model.Image(id1).HasPose() || !model.Image(id2).HasPose())
-      continue;
+    if (matches.empty() || !RegisteredPair(model, id1, id2)) continue;
     const colmap::Image& image1 = model.Image(id1);
     const colmap::Image& image2 = model.Image(id2);
     const colmap::Camera& camera1 = model.Camera(image1.CameraId());
@@ -62,8 +145,14 @@ MatchConsistency CheckMatchConsistency(const colmap::Reconstruction& model,
       ++result.num_matches;
       const colmap::Point2D& p1 = image1.Point2D(match.point2D_idx1);
       const colmap::Point2D& p2 = image2.Point2D(match.point2D_idx2);
-      if (p1.HasPoint3D() && p1.point3D_id == p2.point3D_id) {
+      if (InCommonTrack(p1, p2)) {
         ++result.num_in_common_track;
+        continue;
+      }
+      if (options.require_third_view &&
+          !open.Confirmed(KeypointKey(id1, match.point2D_idx1),
+                          KeypointKey(id2, match.point2D_idx2))) {
+        ++result.num_unconfirmed;
         continue;
       }
       const std::optional<Eigen::Vector2d> cam_point1 =
