@@ -20,6 +20,24 @@ int TaskGraph::Add(Task task) {
   return NumTasks() - 1;
 }
 
+namespace {
+
+// Removes from `ready` and returns its task of highest priority; ties go to
+// the earlier task.
+int TakeHighestPriority(const std::vector<double>& priority,
+                        std::vector<int>* ready) {
+  const auto best =
+      std::max_element(ready->begin(), ready->end(), [&](int a, int b) {
+        return priority[a] < priority[b] ||
+               (priority[a] == priority[b] && a > b);
+      });
+  const int t = *best;
+  ready->erase(best);
+  return t;
+}
+
+}  // namespace
+
 void TaskGraph::Run(int num_workers) {
   if (num_workers < 1)
     throw std::invalid_argument("TaskGraph: needs at least one worker");
@@ -50,14 +68,7 @@ void TaskGraph::Run(int num_workers) {
     while (true) {
       changed.wait(lock, [&] { return !ready.empty() || finished == n; });
       if (finished == n) return;
-      // The ready task of highest priority; ties go to the earlier one.
-      const auto best =
-          std::max_element(ready.begin(), ready.end(), [&](int a, int b) {
-            return priority[a] < priority[b] ||
-                   (priority[a] == priority[b] && a > b);
-          });
-      const int t = *best;
-      ready.erase(best);
+      const int t = TakeHighestPriority(priority, &ready);
       ++running;
       const int share = static_cast<int>(ready.size()) + running;
       const int threads = std::max(1, num_workers / std::max(1, share));
@@ -130,13 +141,7 @@ double ScheduledWallTime(const std::vector<double>& seconds,
     // Start what the free workers can take now.
     for (double& free : free_at) {
       if (free > now || ready.empty()) continue;
-      const auto best =
-          std::max_element(ready.begin(), ready.end(), [&](int a, int b) {
-            return priority[a] < priority[b] ||
-                   (priority[a] == priority[b] && a > b);
-          });
-      const int t = *best;
-      ready.erase(best);
+      const int t = TakeHighestPriority(priority, &ready);
       end[t] = now + seconds[t];
       free = end[t];
       running.push_back(t);
