@@ -93,6 +93,8 @@ void TmrMergeOptions::AddTo(OptionTable* t) {
   t->Add("Tmr.merge_register_images", &register_images,
          "align by registering this many images on a scene (0: off)")
       .AtLeast(0);
+  t->Add("Tmr.merge_align_all_at_once", &align_all_at_once,
+         "align all cluster models at once (similarity averaging)");
   t->Add("Tmr.complete_models", &complete_models,
          "finally register images no model holds");
 }

@@ -14,17 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// What a successful scene merge rested on.
-std::string DescribeFit(const ModelAlignment& a) {
-  if (a.num_registered_images > 0) {
-    return std::to_string(a.num_supporting_images) + " of " +
-           std::to_string(a.num_registered_images) +
-           " images registered on the scene's points fit";
-  }
-  return std::to_string(a.num_inliers) + " of " +
-         std::to_string(a.num_shared_tracks) + " shared tracks fit";
-}
-
 // Each scene remembers its registered images (AssemblyScene::held).
 void HoldImages(std::vector<AssemblyScene>* scenes) {
   for (AssemblyScene& scene : *scenes) {
@@ -34,6 +23,16 @@ void HoldImages(std::vector<AssemblyScene>* scenes) {
 }
 
 }  // namespace
+
+std::string DescribeFit(const ModelAlignment& a) {
+  if (a.num_registered_images > 0) {
+    return std::to_string(a.num_supporting_images) + " of " +
+           std::to_string(a.num_registered_images) +
+           " images registered on the scene's points fit";
+  }
+  return std::to_string(a.num_inliers) + " of " +
+         std::to_string(a.num_shared_tracks) + " shared tracks fit";
+}
 
 void SortBySize(std::vector<AssemblyScene>* scenes) {
   std::sort(scenes->begin(), scenes->end(),
@@ -67,7 +66,13 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   Scenes scenes;
   for (const auto& model : models)
     scenes.push_back({model, false, model->NumRegImages(), {}});
-  MergeScenes(&scenes);
+  // Links the averaging refused get their second try against the refined
+  // scenes, below.
+  if (o_.merge.align_all_at_once) {
+    AlignAllScenes(&scenes);
+  } else {
+    MergeScenes(&scenes);
+  }
   if (o_.merge.complete_models) {
     CompleteScenes(&scenes);
     // New models from what is left may overlap the others.

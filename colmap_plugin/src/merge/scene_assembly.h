@@ -43,6 +43,9 @@ struct AssemblyScene {
 // Orders scenes by registered images, largest first.
 void SortBySize(std::vector<AssemblyScene>* scenes);
 
+// What a successful alignment rested on, for the report.
+std::string DescribeFit(const ModelAlignment& alignment);
+
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
 // (merge/model_merging.h) or by images registered on the scene's points
@@ -66,7 +69,9 @@ class SceneAssembler {
                  std::vector<std::string> image_names, int num_threads,
                  std::function<void(const TmrTaskReport&)> record);
 
-  // The whole last stage: MergeScenes, CompleteScenes, ReconstructLeftovers
+  // The whole last stage: AlignAllScenes (or, without
+  // options.merge.align_all_at_once, MergeScenes), CompleteScenes,
+  // ReconstructLeftovers
   // (the last two when options.merge.complete_models), RefineMergedScenes,
   // then MergeScenes once more on the refined scenes and RefineLateMerges,
   // and (options.merge.complete_models) CompleteScenes on the refined
@@ -96,6 +101,13 @@ class SceneAssembler {
   // (docs/mapper.md, step 4). Between those, merges add no adjustment: one
   // per merge would cost far more.
   void MergeScenes(Scenes* scenes) const;
+  // MergeScenes' first pass with options.merge.align_all_at_once: every
+  // pair of linked models (those of at least MinModelSize images where
+  // models are completed) aligned by Align, in parallel; one similarity
+  // averaging of those alignments (AverageSimilarities); each connected
+  // part appended into its largest model in the averaged frame, left to
+  // RefineMergedScenes for its one adjustment (scene_averaging.cc).
+  void AlignAllScenes(Scenes* scenes) const;
   // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
   size_t MinModelSize() const;
 

@@ -86,6 +86,13 @@ struct TmrMergeOptions {
   // aligned by registering up to this many of its images on the scene's
   // points (AlignModelsByRegisteredImages); 0: the track rule only.
   int register_images = 10;  // --Tmr.merge_register_images
+  // Image-cluster models are aligned all at once: every linked pair in
+  // parallel, then one similarity averaging over the graph of models that
+  // refuses links inconsistent around loops, and each connected part is
+  // appended into its largest model with no refinement between
+  // (merge/similarity_averaging.h). false: one model after the other into
+  // growing scenes, refined as they grow (--Tmr.merge_refine_growth).
+  bool align_all_at_once = true;  // --Tmr.merge_align_all_at_once
   // Finally let COLMAP's mapper continue every model with the images no
   // model holds yet, and map what is still left from scratch.
   bool complete_models = true;  // --Tmr.complete_models

@@ -1,0 +1,211 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// The scene assembly's first pass (issue 42, item 2): every pair of linked
+// models aligned at once, in parallel, then one similarity averaging over
+// the graph of models, and each connected part appended into its largest
+// model without adjustment between.
+#include <colmap/util/threading.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "merge/scene_assembly.h"
+#include "merge/similarity_averaging.h"
+#include "tmr/util/process.h"
+
+namespace tmr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Most points a link carries (evenly spread over its seam).
+constexpr size_t kMaxSeamPoints = 2000;
+
+// The points of `model` that `seam_images` observe, in the model's frame,
+// and their median viewing distance: where a link to another model is
+// measured.
+void AddSeamPoints(const colmap::Reconstruction& model,
+                   const std::vector<colmap::image_t>& seam_images,
+                   SimilarityLink* link) {
+  std::unordered_set<colmap::point3D_t> seen;
+  std::vector<double> distances;
+  for (const colmap::image_t id : seam_images) {
+    const colmap::Image& image = model.Image(id);
+    const Eigen::Vector3d center = image.ProjectionCenter();
+    for (const colmap::Point2D& p : image.Points2D()) {
+      if (!p.HasPoint3D() || !seen.insert(p.point3D_id).second) continue;
+      const Eigen::Vector3d& xyz = model.Point3D(p.point3D_id).xyz;
+      link->points2.push_back(xyz);
+      distances.push_back((xyz - center).norm());
+    }
+  }
+  if (link->points2.size() > kMaxSeamPoints) {
+    const size_t step = link->points2.size() / kMaxSeamPoints + 1;
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t i = 0; i < link->points2.size(); i += step)
+      kept.push_back(link->points2[i]);
+    link->points2 = std::move(kept);
+  }
+  if (distances.empty()) return;
+  auto middle = distances.begin() + distances.size() / 2;
+  std::nth_element(distances.begin(), middle, distances.end());
+  link->scale2 = std::max(*middle, 1e-9);
+}
+
+// Two models that verified pairs link (model1 < model2): their verified
+// matches, and model2's images on the seam.
+struct ModelPair {
+  int num_correspondences = 0;
+  std::vector<colmap::image_t> seam_images;
+};
+
+std::map<std::pair<int, int>, ModelPair> LinkedPairs(
+    const std::vector<const colmap::Reconstruction*>& models,
+    const std::unordered_map<colmap::image_t,
+                             std::vector<std::pair<colmap::image_t, int>>>&
+        image_links) {
+  std::unordered_map<colmap::image_t, int> owner;
+  for (int m = 0; m < static_cast<int>(models.size()); ++m)
+    for (const colmap::image_t id : models[m]->RegImageIds()) owner[id] = m;
+  std::map<std::pair<int, int>, ModelPair> pairs;
+  for (int b = 0; b < static_cast<int>(models.size()); ++b) {
+    for (const colmap::image_t id : models[b]->RegImageIds()) {
+      const auto partners = image_links.find(id);
+      if (partners == image_links.end()) continue;
+      std::unordered_set<int> linked;
+      for (const auto& [other, num_correspondences] : partners->second) {
+        const auto it = owner.find(other);
+        if (it == owner.end() || it->second >= b) continue;
+        ModelPair& pair = pairs[{it->second, b}];
+        pair.num_correspondences += num_correspondences;
+        if (linked.insert(it->second).second) pair.seam_images.push_back(id);
+      }
+    }
+  }
+  return pairs;
+}
+
+// A report row per linked pair: held by the averaging, or why not. Its
+// alignment ran in parallel inside the "align ... at once" step, so the row
+// takes no time of its own in the assembly's chain of steps.
+std::vector<TmrTaskReport> LinkRows(
+    const std::vector<const colmap::Reconstruction*>& models,
+    const std::vector<std::pair<int, int>>& keys,
+    const std::vector<ModelAlignment>& alignments,
+    const std::vector<double>& seconds, const std::vector<size_t>& link_pair,
+    const SimilarityAveraging& placed) {
+  std::vector<TmrTaskReport> rows;
+  for (size_t p = 0; p < keys.size(); ++p) {
+    const int a = static_cast<int>(models[keys[p].first]->NumRegImages());
+    const int b = static_cast<int>(models[keys[p].second]->NumRegImages());
+    rows.push_back({"link of models of " + std::to_string(b) + " and " +
+                        std::to_string(a) + " images",
+                    b, 0, 0.0, false,
+                    (alignments[p].success ? DescribeFit(alignments[p])
+                                           : alignments[p].reason) +
+                        " (aligned in " +
+                        std::to_string(std::lround(seconds[p] * 1000)) +
+                        " ms)"});
+  }
+  for (size_t l = 0; l < link_pair.size(); ++l) {
+    TmrTaskReport& row = rows[link_pair[l]];
+    row.success = placed.accepted[l];
+    row.num_registered = row.success ? row.num_images : 0;
+    row.message =
+        row.message + (row.success ? "; " : "; refused: ") + placed.reason[l];
+  }
+  return rows;
+}
+
+}  // namespace
+
+void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
+  SortBySize(scenes);
+  const auto start = Clock::now();
+  // Models too small to move as one block stay out (as in MergeScenes).
+  const size_t min_size = o_.merge.complete_models ? MinModelSize() : 0;
+  std::vector<const colmap::Reconstruction*> models;
+  int num_images = 0;
+  for (const AssemblyScene& scene : *scenes) {
+    if (scene.model->NumRegImages() < min_size) break;
+    models.push_back(scene.model.get());
+    num_images += static_cast<int>(scene.model->NumRegImages());
+  }
+  const int n = static_cast<int>(models.size());
+  if (n < 2) return;
+  std::map<std::pair<int, int>, ModelPair> pairs =
+      LinkedPairs(models, image_links_);
+  // Every pair aligned at once (the alignments only read the models).
+  std::vector<std::pair<int, int>> keys;
+  for (const auto& [key, pair] : pairs) keys.push_back(key);
+  std::vector<ModelAlignment> alignments(keys.size());
+  std::vector<double> seconds(keys.size());
+  {
+    colmap::ThreadPool pool(std::max(1, num_threads_));
+    for (size_t p = 0; p < keys.size(); ++p) {
+      pool.AddTask([&, p] {
+        const auto pair_start = Clock::now();
+        alignments[p] = Align(*models[keys[p].first], *models[keys[p].second]);
+        seconds[p] = SecondsSince(pair_start);
+      });
+    }
+    pool.Wait();
+  }
+  std::vector<SimilarityLink> links;
+  std::vector<size_t> link_pair;  // each link's index in keys
+  for (size_t p = 0; p < keys.size(); ++p) {
+    if (!alignments[p].success) continue;
+    SimilarityLink link;
+    link.model1 = keys[p].first;
+    link.model2 = keys[p].second;
+    link.model1_from_model2 = alignments[p].target_from_source;
+    link.weight = pairs[keys[p]].num_correspondences;
+    AddSeamPoints(*models[link.model2], pairs[keys[p]].seam_images, &link);
+    if (link.points2.empty()) continue;
+    links.push_back(std::move(link));
+    link_pair.push_back(p);
+  }
+  const SimilarityAveraging placed =
+      AverageSimilarities(n, links, SimilarityAveragingOptions());
+  const std::vector<TmrTaskReport> link_rows =
+      LinkRows(models, keys, alignments, seconds, link_pair, placed);
+  // Each part appended into its first (largest) model, in one frame.
+  int num_parts = 0;
+  for (int m = 0; m < n; ++m) {
+    const int root = placed.part[m];
+    if (root == m) {
+      ++num_parts;
+      continue;
+    }
+    AppendReconstruction(*models[m], placed.part_from_model[m],
+                         (*scenes)[root].model.get());
+    (*scenes)[root].unrefined = true;
+  }
+  const int num_held = static_cast<int>(
+      std::count(placed.accepted.begin(), placed.accepted.end(), true));
+  record_({"align " + std::to_string(keys.size()) + " linked pairs of " +
+               std::to_string(n) + " models at once",
+           num_images, num_images, SecondsSince(start), true,
+           std::to_string(links.size()) + " pairs aligned, " +
+               std::to_string(num_held) +
+               " held by the similarity averaging; " +
+               "scenes: " + std::to_string(num_parts)});
+  for (const TmrTaskReport& row : link_rows) record_(row);
+  Scenes kept;
+  for (int m = 0; m < static_cast<int>(scenes->size()); ++m) {
+    if (m < n && placed.part[m] != m) continue;  // appended above
+    AssemblyScene& scene = (*scenes)[m];
+    // A merged scene is adjusted once on its longest tracks, then fully in
+    // RefineMergedScenes: its full adjustment alone, from the averaged
+    // placement, left scattered photos off (docs/mapper.md, step 4).
+    if (scene.unrefined) Refine(&scene, /*while_merging=*/true);
+    kept.push_back(std::move(scene));
+  }
+  *scenes = std::move(kept);
+  SortBySize(scenes);
+}
+
+}  // namespace tmr
