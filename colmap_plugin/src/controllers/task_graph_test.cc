@@ -97,10 +97,13 @@ TEST(TaskGraph, AThrowingTaskEndsTheRunWithItsException) {
   EXPECT_EQ(ran, 2);
 }
 
-TEST(TaskGraph, EmptyGraphReturns) {
+TEST(TaskGraph, AnEmptyGraphRunsNothingAndTakesNoTime) {
   TaskGraph graph;
   graph.Run(3);
-  SUCCEED();
+  EXPECT_EQ(graph.NumTasks(), 0);
+  EXPECT_TRUE(PathPriorities({}, {}).empty());
+  EXPECT_EQ(ScheduledWallTime({}, {}, 3), 0.0);
+  EXPECT_EQ(ScheduledWallTime({}, {}, 0), 0.0);
 }
 
 TEST(ScheduledWallTime, ReplaysTasksOnAnyNumberOfWorkers) {
