@@ -136,8 +136,10 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
   adjustments[2].longest_tracks_per_image = 250;
   for (int i = 0; i < kRuns; ++i) {
     const auto model = MisalignedHalves();
-    reports[i] = RefineMergedModel(
-        *cache_, colmap::IncrementalPipelineOptions(), adjustments[i], model);
+    reports[i] =
+        RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(),
+                          adjustments[i], model)
+            .report;
     after[i] = EvaluateReconstruction(*gt_, *model, {});
     EXPECT_EQ(after[i].num_registered_images, gt_->NumRegImages());
     EXPECT_FALSE(after[i].wrong_merge);
@@ -167,6 +169,64 @@ TEST_F(BlockAdjustmentTest, BlocksRecoverASeamAsTheWholeAdjustmentDoes) {
   EXPECT_LT(after[2].centre_aligned_rotation_error_deg.median, 0.5 * seam);
 }
 
+// As a scene merged at once is refined: on its longest tracks, then fully as
+// blocks of a quarter of the images side by side. The poses come back as
+// well as with the whole model adjusted, and the model does not depend on
+// how many blocks ran at once.
+TEST_F(BlockAdjustmentTest, BlocksSideBySideDoAsTheWholeAdjustment) {
+  MergedModelAdjustment whole;
+  whole.max_block_images = 0;
+  MergedModelAdjustment longest_tracks;
+  longest_tracks.longest_tracks_per_image = 250;
+  MergedModelAdjustment blocks = whole;
+  blocks.parallel_block_images = gt_->NumRegImages() / 4;
+  // One thread per adjustment, as in a repeatable run (Tmr.repeatable).
+  colmap::IncrementalPipelineOptions options;
+  options.num_threads = 1;
+  const auto reference = MisalignedHalves();
+  RefineMergedModel(*cache_, options, whole, reference);
+  std::shared_ptr<colmap::Reconstruction> models[2];
+  for (int workers = 1; workers <= 2; ++workers) {
+    auto& model = models[workers - 1];
+    model = MisalignedHalves();
+    RefineMergedModel(*cache_, options, longest_tracks, model);
+    blocks.num_workers = workers;
+    const MergedModelRefinement refinement =
+        RefineMergedModel(*cache_, options, blocks, model);
+    std::cout << workers << " at once: " << refinement.report << "\n";
+    EXPECT_NE(refinement.report.find("blocks adjusted at once"),
+              std::string::npos)
+        << refinement.report;
+    EXPECT_GE(refinement.block_seconds.size(), 4u);
+    EXPECT_GT(refinement.blocks_wall_seconds, 0);
+  }
+  for (const colmap::image_t id : models[0]->RegImageIds()) {
+    const colmap::Rigid3d a = models[0]->Image(id).CamFromWorld();
+    const colmap::Rigid3d b = models[1]->Image(id).CamFromWorld();
+    ASSERT_EQ(a.rotation().coeffs(), b.rotation().coeffs()) << id;
+    ASSERT_EQ(a.translation(), b.translation()) << id;
+  }
+  EXPECT_EQ(models[0]->NumPoints3D(), models[1]->NumPoints3D());
+  const ModelEvaluation before =
+      EvaluateReconstruction(*gt_, *MisalignedHalves(), {});
+  const ModelEvaluation by_whole = EvaluateReconstruction(*gt_, *reference, {});
+  const ModelEvaluation by_blocks =
+      EvaluateReconstruction(*gt_, *models[0], {});
+  std::cout << "median rotation error: whole "
+            << by_whole.rotation_error_deg.median << " deg, blocks "
+            << by_blocks.rotation_error_deg.median << " deg; reprojection "
+            << by_whole.mean_reprojection_error_px << " px, "
+            << by_blocks.mean_reprojection_error_px << " px\n";
+  EXPECT_EQ(by_blocks.num_registered_images, gt_->NumRegImages());
+  EXPECT_FALSE(by_blocks.wrong_merge);
+  EXPECT_LT(by_blocks.centre_aligned_rotation_error_deg.median,
+            0.25 * before.centre_aligned_rotation_error_deg.median);
+  EXPECT_LT(by_blocks.rotation_error_deg.median,
+            1.5 * by_whole.rotation_error_deg.median + 0.02);
+  EXPECT_LT(by_blocks.mean_reprojection_error_px,
+            1.05 * by_whole.mean_reprojection_error_px);
+}
+
 // A model adjusted whole gets rounds (COLMAP's IterativeGlobalRefinement):
 // the split tracks of the seam only fit after the first adjustment, are
 // merged then and adjusted again; asked to (the last refinement of a
@@ -180,10 +240,14 @@ TEST_F(BlockAdjustmentTest, RoundsMergeTracksThatFitOnlyAfterAnAdjustment) {
   rounds.adjust_after_last_change = true;
   const auto once = MisalignedHalves();
   const auto repeated = MisalignedHalves();
-  const std::string report_once = RefineMergedModel(
-      *cache_, colmap::IncrementalPipelineOptions(), one_round, once);
-  const std::string report = RefineMergedModel(
-      *cache_, colmap::IncrementalPipelineOptions(), rounds, repeated);
+  const std::string report_once =
+      RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(),
+                        one_round, once)
+          .report;
+  const std::string report =
+      RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(), rounds,
+                        repeated)
+          .report;
   std::cout << report << "\n";
   EXPECT_EQ(report_once.find("round 2"), std::string::npos) << report_once;
   EXPECT_NE(report.find("round 2"), std::string::npos) << report;
@@ -226,8 +290,10 @@ TEST_F(BlockAdjustmentTest, ALateJoinAdjustsOnlyTheImagesThatJoined) {
   for (const colmap::image_t id : joined) before += rotation_error_deg(id);
   MergedModelAdjustment adjustment;
   adjustment.only_images = joined;
-  const std::string report = RefineMergedModel(
-      *cache_, colmap::IncrementalPipelineOptions(), adjustment, model);
+  const std::string report =
+      RefineMergedModel(*cache_, colmap::IncrementalPipelineOptions(),
+                        adjustment, model)
+          .report;
   EXPECT_NE(report.find("block of " + std::to_string(joined.size())),
             std::string::npos)
       << report;

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   tmr::MergedModelAdjustment adjustment;
   adjustment.max_block_images = max_block_images;
   const std::string report =
-      tmr::RefineMergedModel(cache, options, adjustment, model);
+      tmr::RefineMergedModel(cache, options, adjustment, model).report;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

@@ -111,6 +111,10 @@ void TmrRefinementOptions::AddTo(OptionTable* t) {
   t->Add("Tmr.ba_max_block_images", &max_block_images,
          "adjust larger merged models by blocks of this many (0: whole)")
       .AtLeast(0);
+  t->Add("Tmr.ba_parallel_block_images", &parallel_block_images,
+         "a scene merged at once: its full adjustment as blocks of this "
+         "many side by side (0: whole)")
+      .AtLeast(0);
 }
 
 void TmrMapperOptions::AddTo(OptionTable* t) {

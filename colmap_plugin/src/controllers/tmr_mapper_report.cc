@@ -60,7 +60,15 @@ std::string ReportJson(const TmrMapperReport& r) {
         << ", \"depends\": [";
     for (size_t d = 0; d < t.depends.size(); ++d)
       out << (d ? ", " : "") << t.depends[d];
-    out << "], \"message\": \"" << JsonEscaped(t.message) << "\"}";
+    out << "]";
+    if (!t.part_seconds.empty()) {
+      out << ", \"parts_wall_s\": " << t.parts_wall_s
+          << ", \"part_seconds\": [";
+      for (size_t p = 0; p < t.part_seconds.size(); ++p)
+        out << (p ? ", " : "") << t.part_seconds[p];
+      out << "]";
+    }
+    out << ", \"message\": \"" << JsonEscaped(t.message) << "\"}";
   }
   out << "\n], \"weak_links\": [";
   for (size_t i = 0; i < r.weak_links.size(); ++i) {
@@ -79,17 +87,36 @@ std::string ReportJson(const TmrMapperReport& r) {
 
 void SummarizeTimeline(int num_workers, TmrMapperReport* r) {
   const int n = static_cast<int>(r->tasks.size());
-  std::vector<double> seconds(n);
-  std::vector<std::vector<int>> depends(n);
+  // One node per row for its time on one thread, and one per part that ran
+  // side by side, after it; a row that waits for another waits for all of
+  // that row's nodes.
+  std::vector<double> seconds;
+  std::vector<std::vector<int>> depends;
+  std::vector<std::vector<int>> row_nodes(n);
   double first_start = std::numeric_limits<double>::max();
   r->tasks_end_s = 0.0;
   for (int t = 0; t < n; ++t) {
     const TmrTaskReport& row = r->tasks[t];
-    seconds[t] = row.reused ? 0.0 : row.seconds;
-    depends[t] = row.depends;
+    const double row_seconds = row.reused ? 0.0 : row.seconds;
+    const bool parts = !row.reused && !row.part_seconds.empty();
+    std::vector<int> waits;
+    for (const int d : row.depends)
+      waits.insert(waits.end(), row_nodes[d].begin(), row_nodes[d].end());
+    const int serial = static_cast<int>(seconds.size());
+    seconds.push_back(parts ? std::max(0.0, row_seconds - row.parts_wall_s)
+                            : row_seconds);
+    depends.push_back(waits);
+    row_nodes[t] = {serial};
+    if (parts) {
+      for (const double part : row.part_seconds) {
+        row_nodes[t].push_back(static_cast<int>(seconds.size()));
+        seconds.push_back(part);
+        depends.push_back({serial});
+      }
+    }
     if (row.in_task_graph) {
       first_start = std::min(first_start, row.start_s);
-      r->tasks_end_s = std::max(r->tasks_end_s, row.start_s + seconds[t]);
+      r->tasks_end_s = std::max(r->tasks_end_s, row.start_s + row_seconds);
     }
   }
   const double before = r->tasks_end_s > 0 ? first_start : 0.0;

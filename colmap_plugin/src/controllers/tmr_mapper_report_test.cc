@@ -68,6 +68,23 @@ TEST(SummarizeTimeline, ReusedTasksCountNothing) {
   EXPECT_DOUBLE_EQ(r.critical_path_s, 2 + 1 + 10 + 5 + 1);
 }
 
+TEST(SummarizeTimeline, PartsSideBySideShrinkWithMoreWorkers) {
+  // The last refinement (8 s on two workers) adjusted four blocks of 3 s
+  // side by side in 6 s of it; its other 2 s ran on one thread.
+  TmrMapperReport r = TwoKernelRun();
+  r.tasks.back().seconds = 8;
+  r.tasks.back().part_seconds = {3, 3, 3, 3};
+  r.tasks.back().parts_wall_s = 6;
+  r.total_seconds = 35;
+  SummarizeTimeline(2, &r);
+  EXPECT_DOUBLE_EQ(r.projected_wall_s[0].second, r.total_seconds);
+  // With four workers or more, the blocks take 3 s instead of 6.
+  EXPECT_DOUBLE_EQ(r.projected_wall_s[1].second, r.total_seconds - 3);
+  EXPECT_DOUBLE_EQ(r.critical_path_s, 2 + 8 + 5 + 1 + 10 + 2 + 3 + 1);
+  EXPECT_NE(ReportJson(r).find("\"part_seconds\": [3, 3, 3, 3]"),
+            std::string::npos);
+}
+
 TEST(SummarizeTimeline, NoTimelineNoShare) {
   TmrMapperReport r;
   r.total_seconds = 10;

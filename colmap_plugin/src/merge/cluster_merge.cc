@@ -52,7 +52,8 @@ ClusterMerge MergeLeafModels(const std::string& kernel_model,
   }
   if (merge.num_merged > 0) {
     merge.adjustment =
-        RefineMergedModel(std::move(cache), mapper, adjustment, merge.model);
+        RefineMergedModel(std::move(cache), mapper, adjustment, merge.model)
+            .report;
   }
   return merge;
 }

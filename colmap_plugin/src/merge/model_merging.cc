@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "sfm/block_adjustment.h"
+#include "sfm/parallel_block_adjustment.h"
 
 namespace tmr {
 namespace {
@@ -266,8 +267,8 @@ void AppendReconstruction(const colmap::Reconstruction& source,
 
 std::string AdjustMergedBundle(
     const colmap::IncrementalPipelineOptions& mapper_options,
-    const MergedModelAdjustment& adjustment,
-    colmap::IncrementalMapper* mapper) {
+    const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper,
+    MergedModelRefinement* refinement) {
   colmap::Reconstruction& model = *mapper->Reconstruction();
   const size_t num_images = model.NumRegImages();
   if (num_images < 2) return "";
@@ -288,10 +289,23 @@ std::string AdjustMergedBundle(
   if (adjustment.max_block_images > 0 &&
       num_images > adjustment.max_block_images)
     return AdjustByBlocks(options, adjustment.max_block_images, &model);
+  if (adjustment.parallel_block_images > 0 &&
+      num_images > adjustment.parallel_block_images) {
+    const BlocksAdjustment blocks = AdjustBlocksAtOnce(
+        CovisibleImageBlocks(model, adjustment.parallel_block_images), options,
+        adjustment.num_workers, &model);
+    if (refinement != nullptr) {
+      refinement->block_seconds.insert(refinement->block_seconds.end(),
+                                       blocks.block_seconds.begin(),
+                                       blocks.block_seconds.end());
+      refinement->blocks_wall_seconds += blocks.seconds;
+    }
+    return blocks.Describe();
+  }
   return AdjustWholeModel(options, &model);
 }
 
-std::string RefineMergedModel(
+MergedModelRefinement RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment,
@@ -301,7 +315,8 @@ std::string RefineMergedModel(
   const auto triangulation = mapper_options.Triangulation();
   mapper.CompleteAndMergeTracks(triangulation);
   mapper.Retriangulate(triangulation);
-  std::string report;
+  MergedModelRefinement refinement;
+  std::string& report = refinement.report;
   size_t filtered = 0;
   // A model adjusted by blocks gets one round: repeated block passes made
   // it three times less accurate (docs/mapper.md, step 7).
@@ -318,7 +333,7 @@ std::string RefineMergedModel(
     if (adjustment.enabled) {
       report +=
           (round > 0 ? "; round " + std::to_string(round + 1) + ": " : "") +
-          AdjustMergedBundle(mapper_options, adjustment, &mapper);
+          AdjustMergedBundle(mapper_options, adjustment, &mapper, &refinement);
     }
     changed = mapper.CompleteAndMergeTracks(triangulation);
     const size_t round_filtered = mapper.FilterPoints(mapper_options.Mapper());
@@ -330,13 +345,15 @@ std::string RefineMergedModel(
   }
   if (adjustment.enabled && adjustment.adjust_after_last_change && rounds > 1 &&
       changed > 0) {
-    report += "; after " + std::to_string(changed) + " changed observations: " +
-              AdjustMergedBundle(mapper_options, adjustment, &mapper);
+    report +=
+        "; after " + std::to_string(changed) + " changed observations: " +
+        AdjustMergedBundle(mapper_options, adjustment, &mapper, &refinement);
     filtered += mapper.FilterPoints(mapper_options.Mapper());
   }
   mapper.EndReconstruction(/*discard=*/false);
-  return report + (report.empty() ? "" : "; ") + std::to_string(filtered) +
-         " points filtered";
+  report += (report.empty() ? "" : "; ") + std::to_string(filtered) +
+            " points filtered";
+  return refinement;
 }
 
 }  // namespace tmr

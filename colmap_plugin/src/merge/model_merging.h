@@ -133,6 +133,22 @@ struct MergedModelAdjustment {
   // unadjusted, which left a merged scene three times less accurate
   // (docs/mapper.md, step 7).
   bool adjust_after_last_change = false;
+  // > 0: the full adjustment (not by blocks, longest tracks or
+  // only_images) runs as blocks of at most this many images
+  // (CovisibleImageBlocks) adjusted side by side, num_workers at once
+  // (AdjustBlocksAtOnce): for a model whose large-scale shape an
+  // adjustment on its longest tracks has just fixed.
+  size_t parallel_block_images = 0;
+  int num_workers = 1;
+};
+
+// What RefineMergedModel did: each round's adjustment and the points
+// filtered, and the time of every block adjusted side by side.
+struct MergedModelRefinement {
+  std::string report;
+  std::vector<double> block_seconds;
+  // Wall time of those adjustments at once, writing back included.
+  double blocks_wall_seconds = 0;
 };
 
 // Global bundle adjustment of the mapper's model with COLMAP's residuals,
@@ -144,19 +160,22 @@ struct MergedModelAdjustment {
 // model of more than adjustment.max_block_images is adjusted in two
 // smaller problems (AdjustByBlocks: every pose on the longest tracks, then
 // blocks of at most that many images), since memory is the problem's, not
-// the solver's (figures: docs/mapper.md, step 7). Returns the solver's
-// name and Ceres' one-line report, empty when there was nothing to adjust.
+// the solver's (figures: docs/mapper.md, step 7); with
+// adjustment.parallel_block_images, blocks side by side
+// (AdjustBlocksAtOnce), their times added to `refinement`. Returns the
+// solver's name and Ceres' one-line report, empty when there was nothing
+// to adjust.
 std::string AdjustMergedBundle(
     const colmap::IncrementalPipelineOptions& mapper_options,
-    const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper);
+    const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper,
+    MergedModelRefinement* refinement = nullptr);
 
 // Re-links tracks across the merged parts (complete and merge tracks over
 // the full correspondence graph, retriangulation), then global bundle
 // adjustment (AdjustMergedBundle), track merging and point filtering, in
 // adjustment.max_refinements rounds at most, as COLMAP's mapper refines a
-// grown model (IterativeGlobalRefinement). Returns each round's adjustment
-// report and the number of points filtered.
-std::string RefineMergedModel(
+// grown model (IterativeGlobalRefinement).
+MergedModelRefinement RefineMergedModel(
     const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
     const colmap::IncrementalPipelineOptions& mapper_options,
     const MergedModelAdjustment& adjustment,

@@ -202,17 +202,30 @@ void SceneAssembler::Refine(
   MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
   adjustment.only_images = only_images;
   adjustment.adjust_after_last_change = !while_merging && only_images.empty();
-  const std::string report = RefineMergedModel(
+  // A scene merged at once was adjusted on its longest tracks first
+  // (AlignAllScenes).
+  if (!while_merging && o_.merge.align_all_at_once) {
+    adjustment.parallel_block_images = o_.refinement.parallel_block_images;
+    adjustment.num_workers = num_threads_;
+  }
+  const MergedModelRefinement refinement = RefineMergedModel(
       cache_, ColmapOptions(o_, num_threads_), adjustment, scene->model);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->model->NumRegImages());
   const bool full =
       adjustment.longest_tracks_per_image == 0 && only_images.empty();
-  record_({full                  ? "refine merged model"
-           : only_images.empty() ? "refine growing scene"
-                                 : "refine late merge",
-           images, images, SecondsSince(start), true,
-           "tracks merged, global bundle adjustment: " + report});
+  TmrTaskReport row{
+      full                  ? "refine merged model"
+      : only_images.empty() ? "refine growing scene"
+                            : "refine late merge",
+      images,
+      images,
+      SecondsSince(start),
+      true,
+      "tracks merged, global bundle adjustment: " + refinement.report};
+  row.part_seconds = refinement.block_seconds;
+  row.parts_wall_s = refinement.blocks_wall_seconds;
+  record_(row);
   if (full) scene->unrefined = false;
   scene->refined_size = scene->model->NumRegImages();
 }

@@ -39,36 +39,6 @@ double SquaredReprojectionError(const colmap::Reconstruction& model,
   return sum;
 }
 
-// Triangulates the point again from its track with the model's poses
-// (COLMAP's multi-view DLT on normalized coordinates) where that fits its
-// observations better than its current position.
-void RetriangulateIfBetter(colmap::Reconstruction* model,
-                           colmap::point3D_t point_id) {
-  colmap::Point3D& point = model->Point3D(point_id);
-  std::vector<Eigen::Matrix3x4d> cams_from_world;
-  std::vector<Eigen::Vector2d> normalized;
-  for (const colmap::TrackElement& element : point.track.Elements()) {
-    const colmap::Image& image = model->Image(element.image_id);
-    cams_from_world.push_back(image.CamFromWorld().ToMatrix());
-    const std::optional<Eigen::Vector2d> cam_point =
-        model->Camera(image.CameraId())
-            .CamFromImg(image.Point2D(element.point2D_idx).xy);
-    if (!cam_point) return;
-    normalized.push_back(*cam_point);
-  }
-  Eigen::Vector3d xyz;
-  if (colmap::TriangulateMultiViewPoint(
-          colmap::span<const Eigen::Matrix3x4d>(cams_from_world.data(),
-                                                cams_from_world.size()),
-          colmap::span<const Eigen::Vector2d>(normalized.data(),
-                                              normalized.size()),
-          &xyz) &&
-      xyz.allFinite() &&
-      SquaredReprojectionError(*model, point.track, xyz) <
-          SquaredReprojectionError(*model, point.track, point.xyz))
-    point.xyz = xyz;
-}
-
 // Calls visit(other) for every registered image that shares a 3D point with
 // `image_id` (once per shared observation).
 template <typename Visit>
@@ -127,6 +97,33 @@ std::optional<ceres::Solver::Summary> Solve(
 
 }  // namespace
 
+void RetriangulateIfBetter(colmap::Reconstruction* model,
+                           colmap::point3D_t point_id) {
+  colmap::Point3D& point = model->Point3D(point_id);
+  std::vector<Eigen::Matrix3x4d> cams_from_world;
+  std::vector<Eigen::Vector2d> normalized;
+  for (const colmap::TrackElement& element : point.track.Elements()) {
+    const colmap::Image& image = model->Image(element.image_id);
+    cams_from_world.push_back(image.CamFromWorld().ToMatrix());
+    const std::optional<Eigen::Vector2d> cam_point =
+        model->Camera(image.CameraId())
+            .CamFromImg(image.Point2D(element.point2D_idx).xy);
+    if (!cam_point) return;
+    normalized.push_back(*cam_point);
+  }
+  Eigen::Vector3d xyz;
+  if (colmap::TriangulateMultiViewPoint(
+          colmap::span<const Eigen::Matrix3x4d>(cams_from_world.data(),
+                                                cams_from_world.size()),
+          colmap::span<const Eigen::Vector2d>(normalized.data(),
+                                              normalized.size()),
+          &xyz) &&
+      xyz.allFinite() &&
+      SquaredReprojectionError(*model, point.track, xyz) <
+          SquaredReprojectionError(*model, point.track, point.xyz))
+    point.xyz = xyz;
+}
+
 std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
     const colmap::Reconstruction& model, size_t max_images) {
   if (max_images == 0)
@@ -150,13 +147,17 @@ std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
   return blocks;
 }
 
-BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
-                            const colmap::BundleAdjustmentOptions& options,
-                            colmap::Reconstruction* model) {
+BlockAdjustment AdjustBlock(
+    const std::vector<colmap::image_t>& block,
+    const colmap::BundleAdjustmentOptions& options,
+    colmap::Reconstruction* model,
+    const std::unordered_set<colmap::camera_t>& held_cameras) {
   BlockAdjustment result;
   if (block.empty()) return result;
   const std::unordered_set<colmap::image_t> inside(block.begin(), block.end());
   colmap::BundleAdjustmentConfig config;
+  for (const colmap::camera_t id : held_cameras)
+    config.SetConstantCamIntrinsics(id);
   for (const colmap::image_t id : block) {
     config.AddImage(id);
     for (const colmap::Point2D& point2D : model->Image(id).Points2D()) {

@@ -9,9 +9,16 @@
 #include <colmap/scene/reconstruction.h>
 
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace tmr {
+
+// Triangulates the point again from its track with the model's poses
+// (COLMAP's multi-view DLT on normalized coordinates) where that fits its
+// observations better than its current position.
+void RetriangulateIfBetter(colmap::Reconstruction* model,
+                           colmap::point3D_t point_id);
 
 // Cuts the registered images of `model` into blocks of at most max_images
 // that are each grown breadth-first over shared 3D points (region growing
@@ -26,16 +33,19 @@ std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
 // block's poses, cameras and points are free; a point that images outside
 // the block also observe keeps those observations, with their poses held.
 // A block that no outside image constrains gets COLMAP's global gauge
-// (first pose and one coordinate of the second position held).
+// (first pose and one coordinate of the second position held). The
+// intrinsics of `held_cameras` stay as they are.
 struct BlockAdjustment {
   int num_iterations = 0;
   bool converged = false;
   double initial_cost = 0;
   double final_cost = 0;
 };
-BlockAdjustment AdjustBlock(const std::vector<colmap::image_t>& block,
-                            const colmap::BundleAdjustmentOptions& options,
-                            colmap::Reconstruction* model);
+BlockAdjustment AdjustBlock(
+    const std::vector<colmap::image_t>& block,
+    const colmap::BundleAdjustmentOptions& options,
+    colmap::Reconstruction* model,
+    const std::unordered_set<colmap::camera_t>& held_cameras = {});
 
 // Global bundle adjustment of every pose and camera of the model with
 // COLMAP's residuals, loss and gauge, but a direct sparse Schur solver at
