@@ -10,6 +10,8 @@
 #include <memory>
 #include <string>
 
+#include "sfm/model_edits.h"
+
 namespace tmr {
 
 struct ModelAlignmentOptions {
@@ -76,20 +78,6 @@ SharedTrackFit FitSharedTracks(const colmap::Reconstruction& target,
                                const colmap::CorrespondenceGraph& graph,
                                const colmap::Sim3d& target_from_source,
                                double max_reprojection_error_px);
-
-// Adds image `image_id` of `source` to `target` (id, name, camera,
-// keypoints, none of them on a 3D point; its camera, rig and frame too
-// where `target` lacks them), posed at cam_from_world and registered.
-void AddImageWithoutPoints(const colmap::Reconstruction& source,
-                           colmap::image_t image_id,
-                           const colmap::Rigid3d& cam_from_world,
-                           colmap::Reconstruction* target);
-
-// Poses image `image_id` of `model` (through its frame: tmr's frames hold
-// one image each) and registers its frame if it was not.
-void SetPoseAndRegister(colmap::image_t image_id,
-                        const colmap::Rigid3d& cam_from_world,
-                        colmap::Reconstruction* model);
 
 // Adds the registered images of `source` that `target` does not hold,
 // transformed by target_from_source, with their 3D points (observations in

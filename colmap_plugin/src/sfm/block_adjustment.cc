@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "merge/model_merging.h"
+#include "sfm/model_edits.h"
 
 namespace tmr {
 namespace {

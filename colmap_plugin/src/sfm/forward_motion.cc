@@ -36,7 +36,8 @@ ForwardMotionStats MeasureForwardMotion(const colmap::Database& database,
     if (geometry.config == Config::CALIBRATED && geometry.E) {
       t = LeftNullVector(*geometry.E);
     } else if (geometry.config == Config::UNCALIBRATED && geometry.F) {
-      const auto image2 = camera_of.find(colmap::PairIdToImagePair(pair_id).second);
+      const auto image2 =
+          camera_of.find(colmap::PairIdToImagePair(pair_id).second);
       if (image2 == camera_of.end()) continue;
       const auto camera2 = cameras.find(image2->second);
       if (camera2 == cameras.end()) continue;

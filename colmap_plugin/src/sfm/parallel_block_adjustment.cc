@@ -11,8 +11,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "merge/model_merging.h"
 #include "sfm/block_adjustment.h"
+#include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -109,9 +109,7 @@ BlocksAdjustment AdjustBlocksAtOnce(
     int owner = observations.begin()->first;
     for (const auto& [b, count] : observations)
       if (count > observations[owner]) owner = b;
-    const colmap::Reconstruction& part = *parts[owner];
-    if (part.ExistsPoint3D(point_id))
-      model->Point3D(point_id).xyz = part.Point3D(point_id).xyz;
+    model->Point3D(point_id).xyz = parts[owner]->Point3D(point_id).xyz;
     if (observations.size() > 1) seam_points.push_back(point_id);
   }
   for (int b = 0; b < num_blocks; ++b) {

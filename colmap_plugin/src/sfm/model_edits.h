@@ -1,0 +1,24 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+//
+// Edits of a COLMAP model that the adjustments and the merges share.
+#pragma once
+
+#include <colmap/scene/reconstruction.h>
+
+namespace tmr {
+
+// Adds image `image_id` of `source` to `target` (id, name, camera,
+// keypoints, none of them on a 3D point; its camera, rig and frame too
+// where `target` lacks them), posed at cam_from_world and registered.
+void AddImageWithoutPoints(const colmap::Reconstruction& source,
+                           colmap::image_t image_id,
+                           const colmap::Rigid3d& cam_from_world,
+                           colmap::Reconstruction* target);
+
+// Poses image `image_id` of `model` (through its frame: tmr's frames hold
+// one image each) and registers its frame if it was not.
+void SetPoseAndRegister(colmap::image_t image_id,
+                        const colmap::Rigid3d& cam_from_world,
+                        colmap::Reconstruction* model);
+
+}  // namespace tmr
