@@ -12,9 +12,12 @@
 #   scene merges rest on images registered on a scene's points where the
 #   clusters share too few tracks;
 # - with the track rule alone and no completion (--Tmr.merge_register_images
-#   0 --Tmr.complete_models 0) the plazas stay apart, and report.json and the last progress lines give, for each
-#   pair of models that verified pairs link, the pairs and why they stay
-#   apart.
+#   0 --Tmr.complete_models 0) the plazas join in one model: each cluster's
+#   halo (images of its neighbours that its tasks also register) gives the
+#   neighbouring cluster models shared tracks;
+# - with that and no halo (--Tmr.halo_images 0) the plazas stay apart, and
+#   report.json and the last progress lines give, for each pair of models
+#   that verified pairs link, the pairs and why they stay apart.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/stock ${WORK_DIR}/images)
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
@@ -50,8 +53,18 @@ if(NOT report MATCHES "images registered on the scene's points fit")
 endif()
 
 run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
-    --output_path ${WORK_DIR}/tracks_only --Mapper.num_threads 2
+    --output_path ${WORK_DIR}/tracks_with_halo --Mapper.num_threads 2
     --Tmr.merge_register_images 0 --Tmr.complete_models 0)
+score(halo ${WORK_DIR}/tracks_with_halo)
+if(NOT halo_models EQUAL 1 OR halo_wrong)
+  message(FATAL_ERROR "the track rule with halos: ${halo_models} models "
+                      "(wrong merge: ${halo_wrong}), not one")
+endif()
+
+run(${TMR_MAPPER} --database_path ${WORK_DIR}/database.db
+    --output_path ${WORK_DIR}/tracks_only --Mapper.num_threads 2
+    --Tmr.merge_register_images 0 --Tmr.complete_models 0
+    --Tmr.halo_images 0)
 if(NOT last_output MATCHES "models 0 and 1 stay apart: [0-9]+ verified pairs")
   message(FATAL_ERROR "no weak-link progress line for models 0 and 1")
 endif()

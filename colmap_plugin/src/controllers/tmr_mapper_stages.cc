@@ -145,7 +145,9 @@ std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
     const TmrKernelNode& node = tree_.kernels[k];
     for (int l = 0; l < static_cast<int>(node.leaf_clusters.size()); ++l) {
       tasks.push_back({"leaf." + std::to_string(k) + "." + std::to_string(l), k,
-                       l, static_cast<int>(node.leaf_clusters[l].size()),
+                       l,
+                       static_cast<int>(node.leaf_clusters[l].size() +
+                                        node.leaf_halos.at(l).size()),
                        static_cast<int>(node.kernel_images.size()), false});
     }
   }
@@ -217,6 +219,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
   std::vector<uint32_t> images;
   std::vector<std::pair<int, int>> pairs;
   std::string base_model;
+  std::vector<colmap::image_t> halo;
   KernelState kernel;  // a leaf task's kernel
   if (task.leaf < 0) {
     // The exemplar first with COLMAP's choice of a second image (most
@@ -250,6 +253,13 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
       if (!parts.count(id)) images.push_back(id);
     for (const uint32_t id : Ids(tree_, node.leaf_clusters.at(task.leaf)))
       images.push_back(id);
+    // The leaf's share of the cluster's halo (images of neighbouring
+    // clusters): registered here too, so that the cluster models share
+    // cameras and points when the tasks end.
+    for (const uint32_t id : Ids(tree_, node.leaf_halos.at(task.leaf))) {
+      images.push_back(id);
+      halo.push_back(id);
+    }
     base_model = work_.KernelModel(task.kernel);
     mapper.fix_existing_frames = o_.task.fix_base_in_leaves;
   }
@@ -260,7 +270,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
       [&](const std::string& db) {
         return RunReconstructionTask(
             mapper, db, base_model, pairs,
-            o_.task.check_kernels ? &kernel_check : nullptr, model);
+            o_.task.check_kernels ? &kernel_check : nullptr, model, halo);
       },
       &reused, error);
   if (!result) return false;
@@ -308,8 +318,10 @@ std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(
                      std::to_string(leaves[i]) +
                      " left out of its cluster: " + reason);
   }
+  size_t num_images = node.cluster_images.size();  // and its halo
+  for (const auto& halo : node.leaf_halos) num_images += halo.size();
   *row = {"merge cluster " + std::to_string(k),
-          static_cast<int>(node.cluster_images.size()),
+          static_cast<int>(num_images),
           static_cast<int>(merge.model->NumRegImages()),
           SecondsSince(start),
           true,

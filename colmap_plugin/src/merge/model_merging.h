@@ -42,6 +42,8 @@ struct ModelAlignment {
   // target's points, and those whose observations fit the similarity.
   int num_registered_images = 0;
   int num_supporting_images = 0;
+  // Of the registered images, those both models held already (a halo).
+  int num_shared_images = 0;
   std::string reason;  // why the models stay apart
 };
 

@@ -102,6 +102,44 @@ bool RegisterOnTarget(const colmap::Reconstruction& target,
   return true;
 }
 
+// An image that both models register (a halo image, which the tasks of two
+// clusters registered): its target pose and its keypoints on the target's
+// points, as a registration on the target would give them.
+RegisteredImage SharedImage(const colmap::Reconstruction& target,
+                            colmap::image_t image_id) {
+  const colmap::Image& image = target.Image(image_id);
+  RegisteredImage r{image_id, image.CamFromWorld(), {}};
+  for (colmap::point2D_t idx = 0; idx < image.NumPoints2D(); ++idx) {
+    const colmap::Point2D& p = image.Point2D(idx);
+    if (p.HasPoint3D()) r.inliers.emplace_back(idx, p.point3D_id);
+  }
+  return r;
+}
+
+// The images of `source` that `target` registers too, with at least
+// min_num_inliers points in the target, the most points first, at most
+// max_images.
+std::vector<RegisteredImage> SharedImages(
+    const colmap::Reconstruction& target, const colmap::Reconstruction& source,
+    const RegistrationAlignmentOptions& options) {
+  std::vector<RegisteredImage> shared;
+  for (const colmap::image_t image_id : source.RegImageIds()) {
+    if (!target.ExistsImage(image_id) || !target.Image(image_id).HasPose())
+      continue;
+    RegisteredImage r = SharedImage(target, image_id);
+    if (static_cast<int>(r.inliers.size()) >= options.min_num_inliers)
+      shared.push_back(std::move(r));
+  }
+  std::sort(shared.begin(), shared.end(), [](const auto& a, const auto& b) {
+    return a.inliers.size() != b.inliers.size()
+               ? a.inliers.size() > b.inliers.size()
+               : a.image_id < b.image_id;
+  });
+  if (static_cast<int>(shared.size()) > options.max_images)
+    shared.resize(options.max_images);
+  return shared;
+}
+
 // Reprojection error (px) of the target point `point3D_id`, moved into the
 // source by source_from_target, at keypoint `idx` of the source image of
 // `r` in its source pose.
@@ -290,7 +328,10 @@ ModelAlignment AlignModelsByRegisteredImages(
     result.num_shared_tracks =
         static_cast<int>(candidates.front().point2D_idx.size());
   }
-  std::vector<RegisteredImage> registered;
+  // Images both models hold need no registration.
+  std::vector<RegisteredImage> registered =
+      SharedImages(target, source, options);
+  result.num_shared_images = static_cast<int>(registered.size());
   int tried = 0;
   for (const TargetCorrespondences& c : candidates) {
     if (static_cast<int>(registered.size()) >= options.max_images ||
@@ -303,8 +344,13 @@ ModelAlignment AlignModelsByRegisteredImages(
   }
   result.num_registered_images = static_cast<int>(registered.size());
   if (result.num_registered_images < options.min_images) {
-    result.reason = std::to_string(result.num_registered_images) + " of " +
-                    std::to_string(tried) +
+    result.reason = (result.num_shared_images > 0
+                         ? std::to_string(result.num_shared_images) +
+                               " images in both models and "
+                         : "") +
+                    std::to_string(result.num_registered_images -
+                                   result.num_shared_images) +
+                    " of " + std::to_string(tried) +
                     " source images tried register on the target's points "
                     "(needs " +
                     std::to_string(options.min_images) + ")";

@@ -7,6 +7,7 @@
 
 #include "controllers/tmr_mapper_options.h"
 #include "merge/model_merging.h"
+#include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -28,7 +29,11 @@ std::string DescribeFit(const ModelAlignment& a) {
   if (a.num_registered_images > 0) {
     return std::to_string(a.num_supporting_images) + " of " +
            std::to_string(a.num_registered_images) +
-           " images registered on the scene's points fit";
+           " images registered on the scene's points fit" +
+           (a.num_shared_images > 0
+                ? " (" + std::to_string(a.num_shared_images) +
+                      " in both models)"
+                : "");
   }
   return std::to_string(a.num_inliers) + " of " +
          std::to_string(a.num_shared_tracks) + " shared tracks fit";
@@ -68,11 +73,13 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     scenes.push_back({model, false, model->NumRegImages(), {}});
   // Links the averaging refused get their second try against the refined
   // scenes, below.
-  if (o_.merge.align_all_at_once) {
-    AlignAllScenes(&scenes);
-  } else {
-    MergeScenes(&scenes);
-  }
+  if (o_.merge.align_all_at_once) AlignAllScenes(&scenes);
+  // Every later step takes each image to be in one model: the halo images
+  // that no merge above joined keep the copy with the most points.
+  std::vector<colmap::Reconstruction*> models_now;
+  for (AssemblyScene& scene : scenes) models_now.push_back(scene.model.get());
+  KeepOneCopyOfEachImage(models_now);
+  if (!o_.merge.align_all_at_once) MergeScenes(&scenes);
   if (o_.merge.complete_models) {
     CompleteScenes(&scenes);
     // New models from what is left may overlap the others.

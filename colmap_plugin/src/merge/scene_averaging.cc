@@ -14,6 +14,7 @@
 
 #include "merge/scene_assembly.h"
 #include "merge/similarity_averaging.h"
+#include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -55,8 +56,8 @@ void AddSeamPoints(const colmap::Reconstruction& model,
   link->scale2 = std::max(*middle, 1e-9);
 }
 
-// Two models that verified pairs link (model1 < model2): their verified
-// matches, and model2's images on the seam.
+// Two models that verified pairs link, or that share images (model1 <
+// model2): their verified matches, and model2's images on the seam.
 struct ModelPair {
   int num_correspondences = 0;
   std::vector<colmap::image_t> seam_images;
@@ -67,21 +68,30 @@ std::map<std::pair<int, int>, ModelPair> LinkedPairs(
     const std::unordered_map<colmap::image_t,
                              std::vector<std::pair<colmap::image_t, int>>>&
         image_links) {
-  std::unordered_map<colmap::image_t, int> owner;
+  // The models that register each image: one, or several for a halo image.
+  std::unordered_map<colmap::image_t, std::vector<int>> owners;
   for (int m = 0; m < static_cast<int>(models.size()); ++m)
-    for (const colmap::image_t id : models[m]->RegImageIds()) owner[id] = m;
+    for (const colmap::image_t id : models[m]->RegImageIds())
+      owners[id].push_back(m);
   std::map<std::pair<int, int>, ModelPair> pairs;
   for (int b = 0; b < static_cast<int>(models.size()); ++b) {
     for (const colmap::image_t id : models[b]->RegImageIds()) {
+      std::unordered_set<int> linked;
+      for (const int a : owners.at(id)) {
+        if (a < b && linked.insert(a).second)
+          pairs[{a, b}].seam_images.push_back(id);
+      }
       const auto partners = image_links.find(id);
       if (partners == image_links.end()) continue;
-      std::unordered_set<int> linked;
       for (const auto& [other, num_correspondences] : partners->second) {
-        const auto it = owner.find(other);
-        if (it == owner.end() || it->second >= b) continue;
-        ModelPair& pair = pairs[{it->second, b}];
-        pair.num_correspondences += num_correspondences;
-        if (linked.insert(it->second).second) pair.seam_images.push_back(id);
+        const auto it = owners.find(other);
+        if (it == owners.end()) continue;
+        for (const int a : it->second) {
+          if (a >= b) continue;
+          ModelPair& pair = pairs[{a, b}];
+          pair.num_correspondences += num_correspondences;
+          if (linked.insert(a).second) pair.seam_images.push_back(id);
+        }
       }
     }
   }
@@ -172,7 +182,11 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
       AverageSimilarities(n, links, SimilarityAveragingOptions());
   const std::vector<TmrTaskReport> link_rows =
       LinkRows(models, keys, alignments, seconds, link_pair, placed);
-  // Each part appended into its first (largest) model, in one frame.
+  // Images that several models register (halos) keep one copy, then each
+  // part is appended into its first (largest) model, in one frame.
+  std::vector<colmap::Reconstruction*> editable;
+  for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
+  const int num_copies = KeepOneCopyOfEachImage(editable);
   int num_parts = 0;
   for (int m = 0; m < n; ++m) {
     const int root = placed.part[m];
@@ -192,7 +206,10 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
            std::to_string(links.size()) + " pairs aligned, " +
                std::to_string(num_held) +
                " held by the similarity averaging; " +
-               "scenes: " + std::to_string(num_parts)});
+               "scenes: " + std::to_string(num_parts) +
+               (num_copies > 0 ? "; " + std::to_string(num_copies) +
+                                     " second copies of images taken out"
+                               : "")});
   for (const TmrTaskReport& row : link_rows) record_(row);
   Scenes kept;
   for (int m = 0; m < static_cast<int>(scenes->size()); ++m) {

@@ -1,6 +1,8 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/model_edits.h"
 
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace tmr {
@@ -41,6 +43,28 @@ void SetPoseAndRegister(colmap::image_t image_id,
   const bool registered = frame.HasPose();
   frame.SetCamFromWorld(image.CameraId(), cam_from_world);
   if (!registered) model->RegisterFrame(frame.FrameId());
+}
+
+int KeepOneCopyOfEachImage(
+    const std::vector<colmap::Reconstruction*>& models) {
+  // Per image, the model whose copy stays and its number of 3D points.
+  std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
+  std::vector<std::pair<size_t, colmap::image_t>> copies;
+  for (size_t m = 0; m < models.size(); ++m) {
+    for (const colmap::image_t id : models[m]->RegImageIds()) {
+      copies.emplace_back(m, id);
+      const size_t points = models[m]->Image(id).NumPoints3D();
+      const auto [it, inserted] = best.emplace(id, std::make_pair(m, points));
+      if (!inserted && points > it->second.second) it->second = {m, points};
+    }
+  }
+  int removed = 0;
+  for (const auto& [m, id] : copies) {
+    if (best.at(id).first == m) continue;
+    models[m]->DeRegisterFrame(models[m]->Image(id).FrameId());
+    ++removed;
+  }
+  return removed;
 }
 
 }  // namespace tmr

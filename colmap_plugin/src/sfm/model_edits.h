@@ -5,6 +5,8 @@
 
 #include <colmap/scene/reconstruction.h>
 
+#include <vector>
+
 namespace tmr {
 
 // Adds image `image_id` of `source` to `target` (id, name, camera,
@@ -20,5 +22,12 @@ void AddImageWithoutPoints(const colmap::Reconstruction& source,
 void SetPoseAndRegister(colmap::image_t image_id,
                         const colmap::Rigid3d& cam_from_world,
                         colmap::Reconstruction* model);
+
+// Leaves every image registered in one of `models` only: where several
+// register it (the halo of neighbouring clusters), the copy that observes
+// the most 3D points stays (the first model's on a tie) and the others are
+// deregistered, their observations taken out of their tracks. Returns how
+// many copies it deregistered.
+int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models);
 
 }  // namespace tmr

@@ -100,13 +100,36 @@ constexpr int kMinPartImages = 3;
 // which costs less than another attempt at the whole kernel.
 constexpr double kEnoughShare = 0.5;
 
+bool IsHalo(const std::vector<colmap::image_t>& halo_images,
+            colmap::image_t image_id) {
+  return std::find(halo_images.begin(), halo_images.end(), image_id) !=
+         halo_images.end();
+}
+
+bool Registered(const colmap::Reconstruction& model, colmap::image_t image_id) {
+  return model.ExistsImage(image_id) && model.Image(image_id).HasPose();
+}
+
+// The images of `images` that `model` does not register, halo images aside.
+int NumLeftOut(const std::vector<colmap::Image>& images,
+               const colmap::Reconstruction& model,
+               const std::vector<colmap::image_t>& halo_images) {
+  int n = 0;
+  for (const colmap::Image& image : images) {
+    n += !IsHalo(halo_images, image.ImageId()) &&
+         !Registered(model, image.ImageId());
+  }
+  return n;
+}
+
 // The images of the task database (`images`) that `model` does not
-// register, mapped from scratch: the models of at least kMinPartImages
+// register, except `halo_images`, mapped from scratch: the models of at least kMinPartImages
 // images, largest first.
 std::vector<std::shared_ptr<colmap::Reconstruction>> MapRest(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::vector<colmap::Image>& images,
-    const colmap::Reconstruction& model) {
+    const colmap::Reconstruction& model,
+    const std::vector<colmap::image_t>& halo_images) {
   auto options =
       std::make_shared<colmap::IncrementalPipelineOptions>(mapper_options);
   options->multiple_models = true;
@@ -114,8 +137,8 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> MapRest(
   options->min_model_size = kMinPartImages;
   options->image_names.clear();
   for (const colmap::Image& image : images) {
-    if (!model.ExistsImage(image.ImageId()) ||
-        !model.Image(image.ImageId()).HasPose())
+    if (!IsHalo(halo_images, image.ImageId()) &&
+        !Registered(model, image.ImageId()))
       options->image_names.push_back(image.Name());
   }
   auto manager = std::make_shared<colmap::ReconstructionManager>();
@@ -251,7 +274,8 @@ ReconstructionTaskResult RunReconstructionTask(
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
     const MatchConsistencyOptions* kernel_check,
-    const std::string& output_model) {
+    const std::string& output_model,
+    const std::vector<colmap::image_t>& halo_images) {
   const auto start = std::chrono::steady_clock::now();
   ReconstructionTaskResult result;
   const std::vector<colmap::Image> images =
@@ -285,9 +309,8 @@ ReconstructionTaskResult RunReconstructionTask(
                        *kernel_check, &best, &how);
   std::vector<std::shared_ptr<colmap::Reconstruction>> parts;
   if (best && best->NumRegImages() >= 2 &&
-      static_cast<int>(best->NumRegImages()) + kMinPartImages <=
-          result.num_images) {
-    parts = MapRest(mapper_options, task_database, images, *best);
+      NumLeftOut(images, *best, halo_images) >= kMinPartImages) {
+    parts = MapRest(mapper_options, task_database, images, *best, halo_images);
   }
   // A kernel's model is its largest. COLMAP keeps the first model of a run
   // whatever its size, so a seeded model can stall at a few images where

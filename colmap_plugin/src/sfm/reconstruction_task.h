@@ -58,12 +58,16 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> DisjointModels(
 // see no point of the base in common (a registered image needs points that
 // two registered images see): the images it leaves are reconstructed on
 // their own as for a kernel (docs/benchmarks.md, "What fixed city4").
+// `halo_images` (images of other clusters, tmr/partition/cluster_halo.h)
+// are registered where they fit and never mapped from scratch: their own
+// cluster's tasks map them.
 ReconstructionTaskResult RunReconstructionTask(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::string& base_model,
     const std::vector<std::pair<int, int>>& initial_pairs,
     const MatchConsistencyOptions* kernel_check,
-    const std::string& output_model);
+    const std::string& output_model,
+    const std::vector<colmap::image_t>& halo_images = {});
 
 // A finished task's result on disk (a small text file, written atomically
 // after the task's models), so that a rerun of a killed run can reuse it.

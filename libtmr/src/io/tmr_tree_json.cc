@@ -91,6 +91,9 @@ void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
     json leaf_clusters = json::array();
     for (const auto& leaf : node.leaf_clusters)
       leaf_clusters.push_back(Names(tree, leaf));
+    json leaf_halos = json::array();
+    for (const auto& halo : node.leaf_halos)
+      leaf_halos.push_back(Names(tree, halo));
     kernels.push_back({{"exemplar", tree.image_names.at(node.exemplar)},
                        {"second_image",
                         node.second_images.empty()
@@ -102,7 +105,8 @@ void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
                        {"origin", KernelOriginName(node.origin)},
                        {"layer", node.layer},
                        {"kernel_images", Names(tree, node.kernel_images)},
-                       {"leaf_clusters", std::move(leaf_clusters)}});
+                       {"leaf_clusters", std::move(leaf_clusters)},
+                       {"leaf_halos", std::move(leaf_halos)}});
   }
   const json root = {{"format", "tmr-tree"},
                      {"version", 2},
@@ -116,7 +120,8 @@ void WriteTmrTreeJson(const TmrTree& tree, std::ostream& out) {
                        {"kernels", tree.timing.kernels_s},
                        {"exemplars", tree.timing.exemplars_s},
                        {"image_clusters", tree.timing.image_clusters_s},
-                       {"leaf_clusters", tree.timing.leaf_clusters_s}}}};
+                       {"leaf_clusters", tree.timing.leaf_clusters_s},
+                       {"halos", tree.timing.halos_s}}}};
   out << root.dump(1) << "\n";
 }
 
@@ -172,6 +177,14 @@ TmrTree ReadTmrTreeJson(std::istream& in,
       Get(k, "layer", &node.layer);
       for (const json& leaf : k.at("leaf_clusters"))
         node.leaf_clusters.push_back(vertices(leaf));
+      if (k.contains("leaf_halos")) {
+        for (const json& halo : k.at("leaf_halos"))
+          node.leaf_halos.push_back(vertices(halo));
+      }
+      if (node.leaf_halos.empty())
+        node.leaf_halos.resize(node.leaf_clusters.size());
+      if (node.leaf_halos.size() != node.leaf_clusters.size())
+        throw std::runtime_error("one leaf_halos list per leaf cluster");
       node.cluster_images = node.kernel_images;
       for (const auto& leaf : node.leaf_clusters) {
         node.cluster_images.insert(node.cluster_images.end(), leaf.begin(),

@@ -19,11 +19,13 @@ void TmrTreeOptions::AddTo(OptionTable* t) {
   exemplar.AddTo(t);
   image_clustering.AddTo(t);
   leaf_clustering.AddTo(t);
+  halo.AddTo(t);
 }
 
 bool TmrTreeOptions::Check(std::string* error) const {
   return kernels.Check(error) && exemplar.Check(error) &&
-         image_clustering.Check(error) && leaf_clustering.Check(error);
+         image_clustering.Check(error) && leaf_clustering.Check(error) &&
+         halo.Check(error);
 }
 
 TmrTree BuildTmrTree(const MatchGraph& match_graph,
@@ -92,6 +94,17 @@ TmrTree BuildTmrTree(const MatchGraph& match_graph,
                                     tree.kernel_size, options.leaf_clustering);
   }
   tree.timing.leaf_clusters_s = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  const std::vector<std::vector<int>> halos =
+      FindClusterHalos(match_graph, clusters.cluster,
+                       static_cast<int>(tree.kernels.size()), options.halo);
+  for (size_t k = 0; k < tree.kernels.size(); ++k) {
+    TmrKernelNode& node = tree.kernels[k];
+    node.leaf_halos =
+        AssignHaloToLeaves(match_graph, node.leaf_clusters, halos[k]);
+  }
+  tree.timing.halos_s = SecondsSince(start);
   return tree;
 }
 

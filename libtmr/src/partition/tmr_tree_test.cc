@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "partition/test_graphs.h"
@@ -52,10 +53,36 @@ TEST(TmrTree, TwoGroupsGiveTwoKernelsWithClustersAndLeaves) {
   EXPECT_EQ(clustered + 1, graph.NumImages());
 }
 
+TEST(TmrTree, LeavesRegisterAHaloFromTheOtherCluster) {
+  const MatchGraph graph = TwoGroupsWithChain();
+  TmrTreeOptions options = SmallScaleOptions();
+  options.halo.min_matches = 1;  // the chain's pairs are weak
+  const TmrTree tree = BuildTmrTree(graph, options);
+  ASSERT_EQ(tree.kernels.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const TmrKernelNode& node = tree.kernels[k];
+    const TmrKernelNode& other = tree.kernels[1 - k];
+    ASSERT_EQ(node.leaf_halos.size(), node.leaf_clusters.size());
+    int num_halo = 0;
+    for (const auto& halo : node.leaf_halos) {
+      for (const int v : halo) {
+        EXPECT_TRUE(std::binary_search(other.cluster_images.begin(),
+                                       other.cluster_images.end(), v));
+        ++num_halo;
+      }
+    }
+    EXPECT_GT(num_halo, 0);
+  }
+  options.halo.images_per_neighbour = 0;
+  for (const TmrKernelNode& node : BuildTmrTree(graph, options).kernels)
+    for (const auto& halo : node.leaf_halos) EXPECT_TRUE(halo.empty());
+}
+
 TEST(TmrTree, SameSeedSameTreeAndJsonRoundTrip) {
   const MatchGraph graph = TwoGroupsWithChain();
   TmrTreeOptions options = SmallScaleOptions();
   options.seed = 17;
+  options.halo.min_matches = 1;
   const TmrTree a = BuildTmrTree(graph, options);
   const TmrTree b = BuildTmrTree(graph, options);
   TmrTree a_copy = a, b_copy = b;
@@ -72,6 +99,7 @@ TEST(TmrTree, SameSeedSameTreeAndJsonRoundTrip) {
     EXPECT_EQ(read.kernels[k].second_images, a.kernels[k].second_images);
     EXPECT_EQ(read.kernels[k].kernel_images, a.kernels[k].kernel_images);
     EXPECT_EQ(read.kernels[k].leaf_clusters, a.kernels[k].leaf_clusters);
+    EXPECT_EQ(read.kernels[k].leaf_halos, a.kernels[k].leaf_halos);
     EXPECT_EQ(read.kernels[k].cluster_images, a.kernels[k].cluster_images);
   }
   EXPECT_EQ(read.unclustered, a.unclustered);

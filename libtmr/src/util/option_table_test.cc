@@ -75,7 +75,7 @@ TEST(OptionTable, TreeOptionsHaveUniqueNamesAndAllowedDefaults) {
     EXPECT_EQ(row.Problem(), "") << row.name;
     EXPECT_FALSE(row.help.empty()) << row.name;
   }
-  EXPECT_EQ(names.size(), 24u);
+  EXPECT_EQ(names.size(), 27u);
   std::string error;
   options.image_clustering.num_layers = 0;
   EXPECT_FALSE(options.Check(&error));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tmr/io/database_reader.h"
+#include "tmr/partition/cluster_halo.h"
 #include "tmr/partition/exemplar.h"
 #include "tmr/partition/image_clustering.h"
 #include "tmr/partition/kernels.h"
@@ -22,6 +23,7 @@ struct TmrTreeOptions {
   ExemplarOptions exemplar;
   MultiLayerShortestPathOptions image_clustering;
   RadialAgglomerateOptions leaf_clustering;
+  ClusterHaloOptions halo;
   // Seed of every random choice (copied into exemplar.ap.seed).
   uint64_t seed = 0;
 
@@ -44,11 +46,14 @@ struct TmrKernelNode {
   int layer = 0;
   std::vector<int> cluster_images;  // kernel and leaves, sorted
   std::vector<std::vector<int>> leaf_clusters;
+  // Per leaf cluster, the images of other clusters its task also registers
+  // (the cluster's halo, FindClusterHalos); empty lists without a halo.
+  std::vector<std::vector<int>> leaf_halos;
 };
 
 struct TmrTreeTiming {
   double graphs_s = 0.0, kernels_s = 0.0, exemplars_s = 0.0,
-         image_clusters_s = 0.0, leaf_clusters_s = 0.0;
+         image_clusters_s = 0.0, leaf_clusters_s = 0.0, halos_s = 0.0;
 };
 
 // The Trilaminar Multiway Reconstruction tree (paper Sec. 4): the root is
@@ -66,7 +71,9 @@ struct TmrTree {
 
 // Builds S and D (Eq. 1-2) from the match graph, then kernels (Sec. 4.1),
 // exemplars, image clusters by Multi-layer Shortest Path (Sec. 4.2) and leaf
-// clusters by Radial Agglomerate Clustering (Sec. 4.3). Deterministic for a
+// clusters by Radial Agglomerate Clustering (Sec. 4.3), and the halo of
+// every image cluster split among its leaves (FindClusterHalos,
+// AssignHaloToLeaves; not in the paper). Deterministic for a
 // given match graph and options.seed. Throws std::invalid_argument when
 // options.Check() fails.
 TmrTree BuildTmrTree(const MatchGraph& match_graph,
@@ -77,7 +84,7 @@ TmrTree BuildTmrTree(const MatchGraph& match_graph,
 std::string DescribeKernels(const TmrTree& tree);
 
 // tree.json: per kernel "exemplar", "second_image", "second_images",
-// "kernel_images", "leaf_clusters" (lists of names); top level
+// "kernel_images", "leaf_clusters", "leaf_halos" (lists of names); top level
 // "unclustered", "kernel_size", "parameters" (every row of
 // TmrTreeOptions::AddTo by name, e.g. "Tmr.alpha": 1.5), "timing_s". Images
 // by name.

@@ -1,0 +1,89 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/tmr_mapper_stages.h"
+
+#include <colmap/scene/reconstruction.h>
+#include <glog/logging.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "tmr/colmap/synthetic_scene.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool Registers(const std::string& model_path, uint32_t image_id) {
+  colmap::Reconstruction model;
+  model.ReadBinary(model_path);
+  return model.ExistsImage(image_id) && model.Image(image_id).HasPose();
+}
+
+// Two overlapping plazas: each image cluster's leaf tasks register its
+// halo (images of the other cluster), and the other cluster's own tasks
+// register those images too, so the two cluster models share cameras.
+TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("tmr_halo_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  FLAGS_minloglevel = google::GLOG_WARNING;  // COLMAP's log of every step
+  SyntheticSceneOptions scene;
+  scene.family = "plazas";
+  scene.num_places = 2;
+  scene.cameras_per_place = 40;
+  scene.num_unlinked_places = 0;
+  std::string error;
+  ASSERT_TRUE(WriteSyntheticScene(scene, (dir / "database.db").string(),
+                                  (dir / "gt").string(), nullptr, &error))
+      << error;
+  TmrMapperOptions options;
+  options.database_path = (dir / "database.db").string();
+  options.output_path = (dir / "out").string();
+  options.num_threads = 1;
+  TmrMapperStages stages(options);
+  TmrMapperReport report;
+  ASSERT_TRUE(stages.Plan(&report, nullptr, &error)) << error;
+  const TmrTree& tree = stages.tree();
+  ASSERT_GE(tree.kernels.size(), 2u);
+  for (const TmrMapperTask& task : stages.Tasks()) {  // kernels first
+    TmrTaskReport row;
+    ASSERT_TRUE(stages.RunTask(task, 1, &row, &error)) << error;
+  }
+  // The tasks of each image's own cluster, and where it is a halo image.
+  int num_halo = 0, num_in_both = 0;
+  for (int k = 0; k < static_cast<int>(tree.kernels.size()); ++k) {
+    const TmrKernelNode& node = tree.kernels[k];
+    for (size_t l = 0; l < node.leaf_halos.size(); ++l) {
+      for (const int v : node.leaf_halos[l]) {
+        ++num_halo;
+        const uint32_t id = tree.image_ids[v];
+        const bool in_halo_task = Registers(stages.work().LeafModel(k, l), id);
+        bool in_own_task = false;
+        for (int o = 0; o < static_cast<int>(tree.kernels.size()); ++o) {
+          const TmrKernelNode& own = tree.kernels[o];
+          if (o == k || !std::binary_search(own.cluster_images.begin(),
+                                            own.cluster_images.end(), v))
+            continue;
+          in_own_task = Registers(stages.work().KernelModel(o), id);
+          for (size_t m = 0; m < own.leaf_clusters.size(); ++m)
+            in_own_task |= Registers(stages.work().LeafModel(o, m), id);
+        }
+        num_in_both += in_halo_task && in_own_task;
+      }
+    }
+  }
+  std::cout << num_in_both << " of " << num_halo
+            << " halo images registered by both clusters' tasks\n";
+  EXPECT_GT(num_halo, 0);
+  // Most halo images see enough of the neighbouring cluster to register.
+  EXPECT_GE(2 * num_in_both, num_halo)
+      << num_in_both << " of " << num_halo << " halo images in both";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tmr
