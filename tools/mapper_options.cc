@@ -16,6 +16,19 @@ namespace tmr {
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
 
+std::string ProjectIniOfPlan(int argc, char** argv) {
+  std::string ini;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    std::string path;
+    if (arg == "--plan" && i + 1 < argc) path = argv[i + 1];
+    if (arg.rfind("--plan=", 0) == 0) path = arg.substr(7);
+    if (!path.empty())
+      ini = (fs::path(path).parent_path() / "project.ini").string();
+  }
+  return ini;
+}
+
 std::string ProjectIni(const po::options_description& desc,
                        const po::variables_map& vm) {
   std::ostringstream ini;

@@ -15,6 +15,10 @@ namespace tmr {
 std::string ProjectIni(const boost::program_options::options_description& desc,
                        const boost::program_options::variables_map& vm);
 
+// The project.ini beside the --plan of the command line (the later stages
+// of tmr_mapper, tmr_synth_tasks); "" without --plan.
+std::string ProjectIniOfPlan(int argc, char** argv);
+
 // Draws output_path/partition.png from output_path/tree.json and the
 // database's similarity graph; false (nothing drawn) above 20,000 images,
 // where the layout would take minutes. Throws on unreadable input.

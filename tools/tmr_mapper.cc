@@ -54,20 +54,6 @@ int Error(const std::string& message, int code = 1) {
   return code;
 }
 
-// The project.ini beside the --plan of the command line; "" without one.
-std::string ProjectIniOfPlan(int argc, char** argv) {
-  std::string ini;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    std::string path;
-    if (arg == "--plan" && i + 1 < argc) path = argv[i + 1];
-    if (arg.rfind("--plan=", 0) == 0) path = arg.substr(7);
-    if (!path.empty())
-      ini = (fs::path(path).parent_path() / "project.ini").string();
-  }
-  return ini;
-}
-
 bool AsksForHelp(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -182,7 +168,7 @@ int main(int argc, char** argv) {
   const bool from_plan = stage != "run" && stage != "partition";
   const bool help = AsksForHelp(argc, argv);
   const std::string ini =
-      from_plan && !help ? ProjectIniOfPlan(argc, argv) : "";
+      from_plan && !help ? tmr::ProjectIniOfPlan(argc, argv) : "";
   if (from_plan && !help && ini.empty())
     return Error(stage + " needs --plan", 2);
   if (!ini.empty() && !fs::is_regular_file(ini)) {

@@ -37,20 +37,8 @@ mkdir -p "$OUT"
 [[ -f "$OUT/results.csv" ]] ||
   echo "scene,images,tool,wall_s,peak_mib,registered,largest,models,median_rot_deg,p90_rot_deg,wrong_merges,displaced" >"$OUT/results.csv"
 
-synth_args() {
-  local seed=0 scene=$1
-  if [[ $scene =~ ^(.*[0-9])s([0-9]+)$ ]]; then scene=${BASH_REMATCH[1]} seed=${BASH_REMATCH[2]}; fi
-  echo "--seed $seed"
-  case "$scene" in
-    city*) local n=${scene#city}; echo "--family city --city_blocks_x $n --city_blocks_y $n" ;;
-    places*) local n=${scene#places}
-      echo "--family places --num_places $n --num_unlinked_places 0 --link_spacing 9" ;;
-    plazas*) local n=${scene#plazas}
-      echo "--family plazas --num_places $n --cameras_per_place 120" \
-        "--detection_probability 0.35 --match_probability 0.7 --match_angle_falloff_deg 12" ;;
-    *) echo "unknown scene $1" >&2; exit 2 ;;
-  esac
-}
+# shellcheck source=scenes.sh
+source "$(dirname "$0")/scenes.sh"
 
 # Prints "wall_s peak_mib" from /usr/bin/time's output file (its last line;
 # a line before it tells a non-zero exit status).
@@ -93,16 +81,7 @@ scenes=("$@")
 [[ ${#scenes[@]} -gt 0 ]] || scenes=(city1 places4)
 for scene in "${scenes[@]}"; do
   dir="$OUT/$scene"
-  if [[ ! -f "$dir/database.db" ]]; then
-    rm -rf "$dir" && mkdir -p "$dir/images"
-    # shellcheck disable=SC2046
-    "$BIN/tmr_synth" --database_path "$dir/database.db" --model_path "$dir/gt" $(synth_args "${scene%v}")
-    if [[ $scene == *v ]]; then  # two-view geometries verified again by COLMAP
-      sqlite3 "$dir/database.db" "DELETE FROM two_view_geometries"
-      "$COLMAP" geometric_verifier --database_path "$dir/database.db" --num_threads "$THREADS" \
-        >"$dir/geometric_verifier.log" 2>&1
-    fi
-  fi
+  ensure_scene "$dir" "$scene"
   images=$(sqlite3 "file:$dir/database.db?immutable=1" "SELECT COUNT(*) FROM images")
   for tool in ${TOOLS:-colmap_mapper colmap_hierarchical colmap_global tmr_mapper}; do
     out="$dir/$tool"

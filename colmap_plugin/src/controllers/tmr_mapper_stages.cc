@@ -23,13 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::vector<uint32_t> Ids(const TmrTree& tree,
-                          const std::vector<int>& vertices) {
-  std::vector<uint32_t> ids;
-  for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
-  return ids;
-}
-
 std::string TreeJson(const TmrTree& tree) {
   std::ostringstream json;
   WriteTmrTreeJson(tree, json);
@@ -224,7 +217,7 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
   if (task.leaf < 0) {
     // The exemplar first with COLMAP's choice of a second image (most
     // matches, wide enough baseline), then with ours.
-    images = Ids(tree_, node.kernel_images);
+    images = ImageIdsOf(tree_, node.kernel_images);
     pairs.emplace_back(tree_.image_ids[node.exemplar], -1);
     for (const int second : node.second_images) {
       pairs.emplace_back(tree_.image_ids[node.exemplar],
@@ -249,14 +242,15 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     // register kernel images its kernel task left.
     const std::unordered_set<uint32_t> parts(kernel.part_images.begin(),
                                              kernel.part_images.end());
-    for (const uint32_t id : Ids(tree_, node.kernel_images))
+    for (const uint32_t id : ImageIdsOf(tree_, node.kernel_images))
       if (!parts.count(id)) images.push_back(id);
-    for (const uint32_t id : Ids(tree_, node.leaf_clusters.at(task.leaf)))
+    for (const uint32_t id :
+         ImageIdsOf(tree_, node.leaf_clusters.at(task.leaf)))
       images.push_back(id);
     // The leaf's share of the cluster's halo (images of neighbouring
     // clusters): registered here too, so that the cluster models share
     // cameras and points when the tasks end.
-    for (const uint32_t id : Ids(tree_, node.leaf_halos.at(task.leaf))) {
+    for (const uint32_t id : ImageIdsOf(tree_, node.leaf_halos.at(task.leaf))) {
       images.push_back(id);
       halo.push_back(id);
     }

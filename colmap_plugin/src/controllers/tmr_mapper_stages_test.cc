@@ -27,8 +27,8 @@ bool Registers(const std::string& model_path, uint32_t image_id) {
 // halo (images of the other cluster), and the other cluster's own tasks
 // register those images too, so the two cluster models share cameras.
 TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("tmr_halo_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tmr_halo_" + std::to_string(getpid()));
   fs::remove_all(dir);
   FLAGS_minloglevel = google::GLOG_WARNING;  // COLMAP's log of every step
   SyntheticSceneOptions scene;

@@ -45,8 +45,7 @@ void SetPoseAndRegister(colmap::image_t image_id,
   if (!registered) model->RegisterFrame(frame.FrameId());
 }
 
-int KeepOneCopyOfEachImage(
-    const std::vector<colmap::Reconstruction*>& models) {
+int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models) {
   // Per image, the model whose copy stays and its number of 3D points.
   std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
   std::vector<std::pair<size_t, colmap::image_t>> copies;

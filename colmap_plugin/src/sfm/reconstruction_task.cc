@@ -123,8 +123,8 @@ int NumLeftOut(const std::vector<colmap::Image>& images,
 }
 
 // The images of the task database (`images`) that `model` does not
-// register, except `halo_images`, mapped from scratch: the models of at least kMinPartImages
-// images, largest first.
+// register, except `halo_images`, mapped from scratch: the models of at least
+// kMinPartImages images, largest first.
 std::vector<std::shared_ptr<colmap::Reconstruction>> MapRest(
     const colmap::IncrementalPipelineOptions& mapper_options,
     const std::string& task_database, const std::vector<colmap::Image>& images,

@@ -59,8 +59,8 @@ std::vector<std::vector<int>> FindClusterHalos(
     std::vector<std::pair<long, int>> chosen;
     for (auto& [neighbour, candidates] : by_neighbour) {
       std::sort(candidates.begin(), candidates.end());
-      const size_t n = std::min<size_t>(candidates.size(),
-                                        options.images_per_neighbour);
+      const size_t n =
+          std::min<size_t>(candidates.size(), options.images_per_neighbour);
       chosen.insert(chosen.end(), candidates.begin(), candidates.begin() + n);
     }
     std::sort(chosen.begin(), chosen.end());

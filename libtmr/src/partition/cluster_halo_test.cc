@@ -10,8 +10,7 @@ namespace tmr {
 namespace {
 
 // Images 0..n-1 with the given verified pairs (i, j, matches).
-MatchGraph Graph(int num_images,
-                 std::vector<std::tuple<int, int, int>> pairs) {
+MatchGraph Graph(int num_images, std::vector<std::tuple<int, int, int>> pairs) {
   MatchGraph graph;
   for (int i = 0; i < num_images; ++i) {
     graph.images.push_back({static_cast<uint32_t>(i + 1),

@@ -108,6 +108,14 @@ TmrTree BuildTmrTree(const MatchGraph& match_graph,
   return tree;
 }
 
+std::vector<uint32_t> ImageIdsOf(const TmrTree& tree,
+                                 const std::vector<int>& vertices) {
+  std::vector<uint32_t> ids;
+  ids.reserve(vertices.size());
+  for (const int v : vertices) ids.push_back(tree.image_ids.at(v));
+  return ids;
+}
+
 std::string DescribeKernels(const TmrTree& tree) {
   if (tree.kernels.empty()) return "";
   std::map<std::string, int> origins;

@@ -69,6 +69,10 @@ struct TmrTree {
   TmrTreeTiming timing;
 };
 
+// The database ids of the images at `vertices` of the tree.
+std::vector<uint32_t> ImageIdsOf(const TmrTree& tree,
+                                 const std::vector<int>& vertices);
+
 // Builds S and D (Eq. 1-2) from the match graph, then kernels (Sec. 4.1),
 // exemplars, image clusters by Multi-layer Shortest Path (Sec. 4.2) and leaf
 // clusters by Radial Agglomerate Clustering (Sec. 4.3), and the halo of

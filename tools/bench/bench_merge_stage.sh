@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Merge-stage benchmark (issue 43): tmr_mapper's merge stage alone, on task
+# results generated from a scene's ground truth (tmr_synth_tasks: every
+# kernel and leaf model with noisy poses and points, each in a frame of its
+# own), so that its time and memory can be measured at sizes where running
+# the tasks would take days. Per scene: the scene (as bench_mapper.sh names
+# them, kept in out/bench_mapper/SCENE), `tmr_mapper partition`,
+# tmr_synth_tasks, then `tmr_mapper merge` under /usr/bin/time; prints the
+# merge's wall time and peak memory, its time per photo, and the models
+# scored by tmr_eval; appends them to out/bench_merge_stage/results.csv.
+#
+# Usage: tools/bench/bench_merge_stage.sh SCENE ...   (e.g. city3 city6 city10)
+# Environment: THREADS (default 2); NOISE_ARGS adds options to
+# tmr_synth_tasks (e.g. "--rotation_noise_deg 0.05"); TMR_ARGS adds options
+# to the partition (and so to the merge).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
+BIN=build/tools
+OUT=out/bench_merge_stage
+THREADS="${THREADS:-2}"
+[[ -x "$BIN/tmr_synth_tasks" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
+# shellcheck source=scenes.sh
+source "$(dirname "$0")/scenes.sh"
+mkdir -p "$OUT"
+[[ -f "$OUT/results.csv" ]] ||
+  echo "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,largest,median_rot_deg,wrong_merges" >"$OUT/results.csv"
+
+for scene in "$@"; do
+  dir=out/bench_mapper/$scene
+  ensure_scene "$dir" "$scene"
+  run="$OUT/$scene"
+  rm -rf "$run" && mkdir -p "$run"
+  # shellcheck disable=SC2086
+  "$BIN/tmr_mapper" partition --database_path "$dir/database.db" --output_path "$run" \
+    --Mapper.num_threads "$THREADS" ${TMR_ARGS:-} >"$run.partition.log" 2>&1
+  tasks=$(grep -c . "$run/plan.txt")
+  start=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  "$BIN/tmr_synth_tasks" --plan "$run/plan.txt" --model_path "$dir/gt" ${NOISE_ARGS:-} >"$run.synth.log" 2>&1
+  synth=$(echo "$(date +%s.%N) - $start" | bc)
+  /usr/bin/time -f "%e %M" -o "$run.merge.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
+    --Mapper.num_threads "$THREADS" >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
+  read -r wall peak < <(tail -1 "$run.merge.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
+  "$BIN/tmr_eval" --gt "$dir/gt" --model "$run" --output_json "$run/eval.json" >/dev/null 2>&1
+  python3 - "$run/eval.json" "$scene" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" <<'PY'
+import json, sys
+models = json.load(open(sys.argv[1]))["models"]
+scene, tasks, synth, wall, peak, csv = sys.argv[2:8]
+big = max(models, key=lambda m: m["registered_images"])
+images = big["reference_images"]
+wrong = sum(1 for m in models if m["wrong_merge"])
+rot = big["rotation_error_deg"]["median"]
+per_photo = float(wall) / images
+open(csv, "a").write(f"{scene},{images},{tasks},{float(synth):.1f},{wall},{peak},{per_photo:.4f},{len(models)},"
+                     f"{big['registered_images']},{rot:.4f},{wrong}\n")
+print(f"{scene:<8} {images:>6} photos, {tasks} tasks generated in {float(synth):.0f} s; merge stage {wall} s "
+      f"({1000 * per_photo:.0f} ms per photo), peak {peak} MiB; {len(models)} models, largest {big['registered_images']}, "
+      f"median rot {rot:.4f}°, wrong merges {wrong}")
+PY
+done
