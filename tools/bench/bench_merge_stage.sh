@@ -58,4 +58,11 @@ print(f"{scene:<8} {images:>6} photos, {tasks} tasks generated in {float(synth):
       f"({1000 * per_photo:.0f} ms per photo), peak {peak} MiB; {len(models)} models, largest {big['registered_images']}, "
       f"median rot {rot:.4f}°, wrong merges {wrong}")
 PY
+  python3 - "$run/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+for t in r["tasks"]:  # the steps of a second or more, with the memory then
+    if t["seconds"] >= 1 and "rss_mib" in t:
+        print(f"           {t['task'][:48]:<48} {t['seconds']:7.1f} s  rss {t['rss_mib']:>6} MiB, peak {t['peak_mib']:>6} MiB")
+PY
 done

@@ -138,6 +138,9 @@ class TmrMapperRun {
     std::lock_guard<std::mutex> lock(mutex_);
     task.start_s = std::max(0.0, SecondsSince(start_) - task.seconds);
     task.in_task_graph = node >= 0;
+    const ProcessMemory memory = ReadProcessMemory();
+    task.rss_mib = memory.rss_mib;
+    task.peak_mib = memory.peak_mib;
     const int row = static_cast<int>(report_->tasks.size());
     if (node >= 0) {
       for (const int d : node_depends_[node])
@@ -337,8 +340,11 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
     std::lock_guard<std::mutex> lock(mutex);
     if (progress) progress(line);
   };
-  auto record = [&](const TmrTaskReport& row) {
+  auto record = [&](TmrTaskReport row) {
     std::lock_guard<std::mutex> lock(mutex);
+    const ProcessMemory memory = ReadProcessMemory();
+    row.rss_mib = memory.rss_mib;
+    row.peak_mib = memory.peak_mib;
     report->tasks.push_back(row);
     if (progress) progress(row.name + ": " + row.message);
   };

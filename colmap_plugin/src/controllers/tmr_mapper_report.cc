@@ -2,6 +2,7 @@
 #include "controllers/tmr_mapper_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -57,7 +58,8 @@ std::string ReportJson(const TmrMapperReport& r) {
         << ", \"reused\": " << (t.reused ? "true" : "false")
         << ", \"start_s\": " << t.start_s
         << ", \"in_task_graph\": " << (t.in_task_graph ? "true" : "false")
-        << ", \"depends\": [";
+        << ", \"rss_mib\": " << std::lround(t.rss_mib)
+        << ", \"peak_mib\": " << std::lround(t.peak_mib) << ", \"depends\": [";
     for (size_t d = 0; d < t.depends.size(); ++d)
       out << (d ? ", " : "") << t.depends[d];
     out << "]";

@@ -180,6 +180,10 @@ struct TmrTaskReport {
   // `seconds` ran on one thread.
   std::vector<double> part_seconds = {};
   double parts_wall_s = 0.0;
+  // The process's resident memory when the step ended and its peak so far
+  // (MiB): a step that raised the peak is the one that needed it.
+  double rss_mib = 0.0;
+  double peak_mib = 0.0;
 };
 
 // Two final models that verified pairs link but no merge rule joined: what

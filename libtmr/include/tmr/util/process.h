@@ -1,8 +1,11 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// Process-wide helpers every stage uses: wall time, and memory handed back.
+// Process-wide helpers every stage uses: wall time, memory used and handed
+// back.
 #pragma once
 
 #include <chrono>
+#include <fstream>
+#include <string>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -22,6 +25,24 @@ inline void ReleaseFreedMemory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif
+}
+
+// Resident memory of this process now (VmRSS) and at its peak so far
+// (VmHWM), in MiB, from /proc/self/status; zeros where there is none.
+struct ProcessMemory {
+  double rss_mib = 0.0;
+  double peak_mib = 0.0;
+};
+inline ProcessMemory ReadProcessMemory() {
+  ProcessMemory memory;
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  double kib = 0.0;
+  while (status >> key) {
+    if (key == "VmRSS:" && status >> kib) memory.rss_mib = kib / 1024;
+    if (key == "VmHWM:" && status >> kib) memory.peak_mib = kib / 1024;
+  }
+  return memory;
 }
 
 }  // namespace tmr
