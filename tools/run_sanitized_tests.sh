@@ -22,8 +22,10 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # find_package_consumer builds a separate, uninstrumented project against
 # the instrumented libraries; it tests packaging, not memory.
 exclude=(-E "^find_package_consumer$")
-# The Slurm test runs the staged code that tmr_mapper_stages covers here.
+# The Slurm test runs the staged code that tmr_mapper_stages covers here;
+# the halo test (TmrMapperStages.*) runs COLMAP's mapper on tasks whose
+# tmr code the end-to-end plazas test also runs.
 [[ "${TMR_SANITIZE_ALL:-0}" == 1 ]] ||
-  exclude=(-LE "real|slurm" -E "^(mapper_comparison_on_city_block|find_package_consumer)$")
+  exclude=(-LE "real|slurm" -E "^(mapper_comparison_on_city_block|find_package_consumer|TmrMapperStages\..*)$")
 echo "[asan] running ctest"
 ctest --test-dir build-asan --output-on-failure --parallel 2 "${exclude[@]}" "$@"
