@@ -67,7 +67,10 @@ void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
     out << " of " << leaf_sizes.front() << "-" << leaf_sizes.back()
         << " images (median " << leaf_sizes[leaf_sizes.size() / 2] << ")";
   }
-  out << "\n";
+  size_t halo = 0;
+  for (const TmrKernelNode& node : tree.kernels)
+    for (const auto& images : node.leaf_halos) halo += images.size();
+  out << "; halos of " << halo << " images from neighbouring clusters\n";
   out << std::setw(6) << "kernel" << std::setw(8) << "origin" << std::setw(8)
       << "kernel" << std::setw(9) << "cluster" << std::setw(7) << "leaves"
       << "  leaf cluster sizes"
@@ -91,7 +94,7 @@ void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
   out << std::fixed << std::setprecision(3) << "time: graphs " << t.graphs_s
       << " s, kernels " << t.kernels_s << " s, exemplars " << t.exemplars_s
       << " s, image clusters " << t.image_clusters_s << " s, leaf clusters "
-      << t.leaf_clusters_s << " s\n"
+      << t.leaf_clusters_s << " s, halos " << t.halos_s << " s\n"
       << std::defaultfloat;
 }
 
