@@ -124,6 +124,20 @@ void RetriangulateIfBetter(colmap::Reconstruction* model,
     point.xyz = xyz;
 }
 
+void BlockAdjustmentTotals::Add(const BlockAdjustment& block) {
+  num_converged += block.converged ? 1 : 0;
+  num_iterations += block.num_iterations;
+  initial_cost += block.initial_cost;
+  final_cost += block.final_cost;
+}
+
+std::string BlockAdjustmentTotals::Describe() const {
+  std::ostringstream out;
+  out << num_converged << " converged, " << num_iterations
+      << " iterations, cost " << initial_cost << " -> " << final_cost;
+  return out.str();
+}
+
 std::vector<std::vector<colmap::image_t>> CovisibleImageBlocks(
     const colmap::Reconstruction& model, size_t max_images) {
   if (max_images == 0)
@@ -219,13 +233,7 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
     AddImageWithoutPoints(model, id, model.Image(id).CamFromWorld(), &reduced);
   std::vector<colmap::point3D_t> ids(kept.begin(), kept.end());
   std::sort(ids.begin(), ids.end());
-  for (const colmap::point3D_t id : ids) {
-    const colmap::Point3D& point = model.Point3D(id);
-    for (const colmap::TrackElement& element : point.track.Elements())
-      reduced.Image(element.image_id)
-          .SetPoint3DForPoint2D(element.point2D_idx, id);
-    reduced.AddPoint3D(id, point);
-  }
+  CopyPointsWithTracks(model, ids, &reduced);
   return reduced;
 }
 
@@ -269,19 +277,11 @@ std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
   std::ostringstream report;
   report << AdjustOnLongestTracks(options, kGlobalPointsPerImage, model);
   const auto blocks = CovisibleImageBlocks(*model, max_block_images);
-  BlockAdjustment sum;
-  int converged = 0;
-  for (const auto& block : blocks) {
-    const BlockAdjustment adjusted = AdjustBlock(block, options, model);
-    sum.num_iterations += adjusted.num_iterations;
-    sum.initial_cost += adjusted.initial_cost;
-    sum.final_cost += adjusted.final_cost;
-    converged += adjusted.converged ? 1 : 0;
-  }
+  BlockAdjustmentTotals totals;
+  for (const auto& block : blocks)
+    totals.Add(AdjustBlock(block, options, model));
   report << ", then " << blocks.size() << " blocks of at most "
-         << max_block_images << " images (" << converged << " converged, "
-         << sum.num_iterations << " iterations, cost " << sum.initial_cost
-         << " -> " << sum.final_cost << ")";
+         << max_block_images << " images (" << totals.Describe() << ")";
   return report.str();
 }
 

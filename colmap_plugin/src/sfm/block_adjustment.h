@@ -47,6 +47,17 @@ BlockAdjustment AdjustBlock(
     colmap::Reconstruction* model,
     const std::unordered_set<colmap::camera_t>& held_cameras = {});
 
+// The adjustments of several blocks added up.
+struct BlockAdjustmentTotals {
+  int num_converged = 0;
+  int num_iterations = 0;
+  double initial_cost = 0;
+  double final_cost = 0;
+  void Add(const BlockAdjustment& block);
+  // "N converged, I iterations, cost A -> B".
+  std::string Describe() const;
+};
+
 // Global bundle adjustment of every pose and camera of the model with
 // COLMAP's residuals, loss and gauge, but a direct sparse Schur solver at
 // every size and Ceres' convergence test (relative cost change below 1e-6;

@@ -45,6 +45,24 @@ void SetPoseAndRegister(colmap::image_t image_id,
   if (!registered) model->RegisterFrame(frame.FrameId());
 }
 
+void CopyPointsWithTracks(const colmap::Reconstruction& source,
+                          const std::vector<colmap::point3D_t>& point_ids,
+                          colmap::Reconstruction* target) {
+  for (const colmap::point3D_t id : point_ids) {
+    const colmap::Point3D& point = source.Point3D(id);
+    for (const colmap::TrackElement& element : point.track.Elements()) {
+      if (!target->ExistsImage(element.image_id)) {
+        AddImageWithoutPoints(source, element.image_id,
+                              source.Image(element.image_id).CamFromWorld(),
+                              target);
+      }
+      target->Image(element.image_id)
+          .SetPoint3DForPoint2D(element.point2D_idx, id);
+    }
+    target->AddPoint3D(id, point);
+  }
+}
+
 int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models) {
   // Per image, the model whose copy stays and its number of 3D points.
   std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;

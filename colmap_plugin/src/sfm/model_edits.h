@@ -23,6 +23,13 @@ void SetPoseAndRegister(colmap::image_t image_id,
                         const colmap::Rigid3d& cam_from_world,
                         colmap::Reconstruction* model);
 
+// Adds the points `point_ids` of `source` to `target` with their ids and
+// whole tracks; an image of a track that `target` lacks is added first, at
+// its pose in `source` (AddImageWithoutPoints).
+void CopyPointsWithTracks(const colmap::Reconstruction& source,
+                          const std::vector<colmap::point3D_t>& point_ids,
+                          colmap::Reconstruction* target);
+
 // Leaves every image registered in one of `models` only: where several
 // register it (the halo of neighbouring clusters), the copy that observes
 // the most 3D points stays (the first model's on a tie) and the others are

@@ -34,19 +34,7 @@ std::unique_ptr<colmap::Reconstruction> BlockPart(
   }
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
-  for (const colmap::point3D_t id : points) {
-    const colmap::Point3D& point = model.Point3D(id);
-    for (const colmap::TrackElement& element : point.track.Elements()) {
-      if (!part->ExistsImage(element.image_id)) {
-        AddImageWithoutPoints(model, element.image_id,
-                              model.Image(element.image_id).CamFromWorld(),
-                              part.get());
-      }
-      part->Image(element.image_id)
-          .SetPoint3DForPoint2D(element.point2D_idx, id);
-    }
-    part->AddPoint3D(id, point);
-  }
+  CopyPointsWithTracks(model, points, part.get());
   return part;
 }
 
@@ -54,9 +42,8 @@ std::unique_ptr<colmap::Reconstruction> BlockPart(
 
 std::string BlocksAdjustment::Describe() const {
   std::ostringstream out;
-  out << block_seconds.size() << " blocks adjusted at once (" << num_converged
-      << " converged, " << num_iterations << " iterations, cost "
-      << initial_cost << " -> " << final_cost << ")";
+  out << block_seconds.size() << " blocks adjusted at once ("
+      << totals.Describe() << ")";
   return out.str();
 }
 
@@ -120,10 +107,7 @@ BlocksAdjustment AdjustBlocksAtOnce(
       if (!shared_cameras.count(camera_id))
         model->Camera(camera_id).params = part.Camera(camera_id).params;
     }
-    result.num_converged += adjusted[b].converged ? 1 : 0;
-    result.num_iterations += adjusted[b].num_iterations;
-    result.initial_cost += adjusted[b].initial_cost;
-    result.final_cost += adjusted[b].final_cost;
+    result.totals.Add(adjusted[b]);
   }
   parts.clear();
   std::sort(seam_points.begin(), seam_points.end());

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "sfm/block_adjustment.h"
+
 namespace tmr {
 
 // What AdjustBlocksAtOnce did.
@@ -19,10 +21,7 @@ struct BlocksAdjustment {
   std::vector<double> block_seconds;
   // Wall time of the whole: blocks, then writing back and the seam points.
   double seconds = 0;
-  int num_converged = 0;
-  int num_iterations = 0;
-  double initial_cost = 0;
-  double final_cost = 0;
+  BlockAdjustmentTotals totals;
   // One line: blocks, iterations, cost.
   std::string Describe() const;
 };
