@@ -60,7 +60,9 @@ function(run_case name tool db expect)
   set(problem "")
   string(REGEX REPLACE "(^|\n)[IWE][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9] [^\n]*"
          "" tool_err "${err}")
-  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${tool_err}")
+  # (a semicolon in a message would split it into two list items)
+  string(REPLACE ";" "," error_text "${tool_err}")
+  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${error_text}")
   list(LENGTH error_lines num_error_lines)
   if(NOT rc MATCHES "^[0-9]+$")
     set(problem "did not exit normally: ${rc}")
@@ -247,6 +249,19 @@ run_case(negative_tolerance mapper ${good} error --Mapper.ba_global_function_tol
 run_case(huge_number partition ${good} error --Tmr.kernel_layers 99999999999999999999)
 run_case(unknown_flag mapper ${good} error --Tmr.no_such_option 1)
 run_case(negative_min_matches partition ${good} error --min_num_matches -1)
+run_case(negative_memory_budget mapper ${good} error --Tmr.memory_budget -1)
+# A memory budget too small for one task: said in one line before any task
+# runs (no task result in the work folder), naming the task and its need.
+run_case(memory_budget_too_small mapper ${good} error --Tmr.memory_budget 0.01)
+execute_process(COMMAND ${MAPPER} --database_path ${good} --output_path ${WORK_DIR}/small_budget
+                        --Tmr.memory_budget 0.01
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT ${TIMEOUT})
+file(GLOB_RECURSE task_results ${WORK_DIR}/small_budget/.tmr_work/*.result)
+if(NOT rc EQUAL 1 OR task_results OR NOT err MATCHES
+   "^tmr_mapper: error: the memory budget of 0.01 GiB \\(--Tmr.memory_budget\\) is too small for task (kernel|leaf)[.0-9]+: about [0-9.]+ GiB for its [0-9]+ images, beside [0-9.]+ GiB of correspondences of all images; give --Tmr.memory_budget [0-9]+ or more\n$")
+  message(STATUS "FAIL memory_budget_too_small: exit ${rc}, results '${task_results}', stderr: ${err}")
+  set(failures "${failures} memory_budget_message")
+endif()
 
 # A full disk under the output folder, at several points of the run: while
 # a task database is created (COLMAP's Database class), while task data is

@@ -28,8 +28,9 @@ expect_error("unknown stage 'mapp'" ${TMR_MAPPER} mapp --plan ${plan})
 run(${TMR_MAPPER} partition --database_path database.db --output_path staged
     WORKING_DIRECTORY ${WORK_DIR})
 set(tasks "${last_output}")
-if(NOT tasks MATCHES "(^|\n)kernel\\.0 [0-9]+ 0 todo\n"
-   OR NOT tasks MATCHES "\nleaf\\.0\\.0 [0-9]+ [0-9]+ todo\n")
+if(NOT tasks MATCHES "(^|\n)kernel\\.0 [0-9]+ 0 todo [0-9]+\n"
+   OR NOT tasks MATCHES "\nleaf\\.0\\.0 [0-9]+ [0-9]+ todo [0-9]+\n"
+   OR NOT tasks MATCHES "\nmerge [0-9]+ 0 waits [0-9]+\n$")
   message(FATAL_ERROR "partition should list the tasks:\n${tasks}")
 endif()
 # tmr_partition partitions the database as the mapper's plan does.
@@ -63,7 +64,7 @@ if(NOT last_output MATCHES "\\(finished earlier\\)")
   message(FATAL_ERROR "a finished task ran again:\n${last_output}")
 endif()
 run(${TMR_MAPPER} status --plan ${plan})
-if(last_output MATCHES "todo")
+if(last_output MATCHES "todo" OR NOT last_output MATCHES "\nmerge [0-9]+ 0 ready [0-9]+\n$")
   message(FATAL_ERROR "tasks left:\n${last_output}")
 endif()
 run(${TMR_MAPPER} merge --plan ${plan})

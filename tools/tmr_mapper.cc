@@ -13,6 +13,7 @@
 // (tmr/colmap/tmr_mapper.h); `tmr_mapper STAGE --help` lists its options.
 #include <boost/program_options.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -81,21 +82,29 @@ void WriteProjectIni(const std::string& stage, const tmr::TmrMapperOptions& o,
                            tmr::ProjectIni(desc, vm));
 }
 
-// partition and status: one line per task (id, images, base images, state).
+// partition and status: one line per task (id, images, base images, state
+// done or todo, expected memory in MiB), then the merge stage's (all
+// images; ready once every task is done, else waits).
 int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
                  const std::function<void(const std::string&)>& progress) {
-  std::vector<tmr::TmrMapperTask> tasks;
+  tmr::TmrMapperPlan plan;
   std::string error;
   const bool ok = stage == "partition"
-                      ? tmr::PlanTmrMapper(o, &tasks, &error, progress)
-                      : tmr::ReadTmrMapperPlan(o, &tasks, &error);
+                      ? tmr::PlanTmrMapper(o, &plan, &error, progress)
+                      : tmr::ReadTmrMapperPlan(o, &plan, &error);
   if (!ok) return Error(error);
   if (stage == "partition" && !tmr::DrawMapperPartitionPicture(o))
     progress("partition.png skipped: too many images to draw");
-  for (const tmr::TmrMapperTask& t : tasks) {
+  std::cout << std::fixed << std::setprecision(0);
+  for (const tmr::TmrMapperTask& t : plan.tasks) {
     std::cout << t.id << " " << t.num_images << " " << t.num_base_images << " "
-              << (t.finished ? "done" : "todo") << "\n";
+              << (t.finished ? "done" : "todo") << " " << t.memory_mib << "\n";
   }
+  const bool ready = std::all_of(plan.tasks.begin(), plan.tasks.end(),
+                                 [](const auto& t) { return t.finished; });
+  std::cout << "merge " << plan.num_images << " 0 "
+            << (ready ? "ready" : "waits") << " " << plan.merge_memory_mib
+            << "\n";
   return 0;
 }
 

@@ -24,7 +24,7 @@ THREADS="${THREADS:-2}"
 source "$(dirname "$0")/scenes.sh"
 mkdir -p "$OUT"
 [[ -f "$OUT/results.csv" ]] ||
-  echo "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,largest,median_rot_deg,wrong_merges" >"$OUT/results.csv"
+  echo "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,largest,median_rot_deg,wrong_merges,expected_peak_mib" >"$OUT/results.csv"
 
 for scene in "$@"; do
   dir=out/bench_mapper/$scene
@@ -34,7 +34,7 @@ for scene in "$@"; do
   # shellcheck disable=SC2086
   "$BIN/tmr_mapper" partition --database_path "$dir/database.db" --output_path "$run" \
     --Mapper.num_threads "$THREADS" ${TMR_ARGS:-} >"$run.partition.log" 2>&1
-  tasks=$(grep -c . "$run/plan.txt")
+  tasks=$(grep -c -v "^merge " "$run/plan.txt")
   start=$(date +%s.%N)
   # shellcheck disable=SC2086
   "$BIN/tmr_synth_tasks" --plan "$run/plan.txt" --model_path "$dir/gt" ${NOISE_ARGS:-} >"$run.synth.log" 2>&1
@@ -42,20 +42,21 @@ for scene in "$@"; do
   /usr/bin/time -f "%e %M" -o "$run.merge.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
     --Mapper.num_threads "$THREADS" >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
   read -r wall peak < <(tail -1 "$run.merge.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
+  read -r _ _ _ expected < <(grep '^merge ' "$run/plan.txt")
   "$BIN/tmr_eval" --gt "$dir/gt" --model "$run" --output_json "$run/eval.json" >/dev/null 2>&1
-  python3 - "$run/eval.json" "$scene" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" <<'PY'
+  python3 - "$run/eval.json" "$scene" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" "$expected" <<'PY'
 import json, sys
 models = json.load(open(sys.argv[1]))["models"]
-scene, tasks, synth, wall, peak, csv = sys.argv[2:8]
+scene, tasks, synth, wall, peak, csv, expected = sys.argv[2:9]
 big = max(models, key=lambda m: m["registered_images"])
 images = big["reference_images"]
 wrong = sum(1 for m in models if m["wrong_merge"])
 rot = big["rotation_error_deg"]["median"]
 per_photo = float(wall) / images
 open(csv, "a").write(f"{scene},{images},{tasks},{float(synth):.1f},{wall},{peak},{per_photo:.4f},{len(models)},"
-                     f"{big['registered_images']},{rot:.4f},{wrong}\n")
+                     f"{big['registered_images']},{rot:.4f},{wrong},{expected}\n")
 print(f"{scene:<8} {images:>6} photos, {tasks} tasks generated in {float(synth):.0f} s; merge stage {wall} s "
-      f"({1000 * per_photo:.0f} ms per photo), peak {peak} MiB; {len(models)} models, largest {big['registered_images']}, "
+      f"({1000 * per_photo:.0f} ms per photo), peak {peak} MiB (expected {expected}); {len(models)} models, largest {big['registered_images']}, "
       f"median rot {rot:.4f}°, wrong merges {wrong}")
 PY
   python3 - "$run/report.json" <<'PY'

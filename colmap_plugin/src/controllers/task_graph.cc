@@ -22,23 +22,39 @@ int TaskGraph::Add(Task task) {
 
 namespace {
 
-// Removes from `ready` and returns its task of highest priority; ties go to
-// the earlier task.
+// Whether ready task a goes before b: higher priority, ties to the earlier
+// task.
+bool Before(const std::vector<double>& priority, int a, int b) {
+  return priority[a] > priority[b] || (priority[a] == priority[b] && a < b);
+}
+
+// Removes from `ready` and returns its task of highest priority.
 int TakeHighestPriority(const std::vector<double>& priority,
                         std::vector<int>* ready) {
   const auto best =
-      std::max_element(ready->begin(), ready->end(), [&](int a, int b) {
-        return priority[a] < priority[b] ||
-               (priority[a] == priority[b] && a > b);
-      });
+      std::min_element(ready->begin(), ready->end(),
+                       [&](int a, int b) { return Before(priority, a, b); });
   const int t = *best;
   ready->erase(best);
   return t;
 }
 
+// The position in `ready` of the task of highest priority that `fits`, or
+// -1.
+template <typename Fits>
+int BestFitting(const std::vector<double>& priority,
+                const std::vector<int>& ready, Fits fits) {
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(ready.size()); ++i) {
+    if (fits(ready[i]) && (best < 0 || Before(priority, ready[i], ready[best])))
+      best = i;
+  }
+  return best;
+}
+
 }  // namespace
 
-void TaskGraph::Run(int num_workers) {
+void TaskGraph::Run(int num_workers, double memory_budget) {
   if (num_workers < 1)
     throw std::invalid_argument("TaskGraph: needs at least one worker");
   const int n = NumTasks();
@@ -62,14 +78,25 @@ void TaskGraph::Run(int num_workers) {
   std::mutex mutex;
   std::condition_variable changed;
   int running = 0, finished = 0;
+  double memory_in_use = 0.0;
+  auto fits = [&](int t) {
+    return memory_budget <= 0.0 || running == 0 ||
+           memory_in_use + tasks_[t].memory <= memory_budget;
+  };
   std::exception_ptr failure;
   auto worker = [&] {
     std::unique_lock<std::mutex> lock(mutex);
     while (true) {
-      changed.wait(lock, [&] { return !ready.empty() || finished == n; });
+      int next = -1;
+      changed.wait(lock, [&] {
+        next = BestFitting(priority, ready, fits);
+        return next >= 0 || finished == n;
+      });
       if (finished == n) return;
-      const int t = TakeHighestPriority(priority, &ready);
+      const int t = ready[next];
+      ready.erase(ready.begin() + next);
       ++running;
+      memory_in_use += tasks_[t].memory;
       const int share = static_cast<int>(ready.size()) + running;
       const int threads = std::max(1, num_workers / std::max(1, share));
       lock.unlock();
@@ -83,6 +110,7 @@ void TaskGraph::Run(int num_workers) {
       }
       lock.lock();
       --running;
+      memory_in_use -= tasks_[t].memory;
       ++finished;
       for (const int d : dependents[t])
         if (--waiting_on[d] == 0) ready.push_back(d);

@@ -23,6 +23,11 @@ namespace tmr {
 // for the other workers sooner. A task is told how many threads it may use:
 // the workers divided among the tasks that are running or ready, at least
 // one, so that the last large task gets all cores.
+//
+// With a memory budget, a task starts only while the expected memory of the
+// tasks running beside it and its own stay within it (the ready task of
+// highest priority that fits; one that fits nowhere runs alone), so that
+// workers wait rather than the machine swap or kill the run.
 class TaskGraph {
  public:
   struct Task {
@@ -30,6 +35,7 @@ class TaskGraph {
     double cost = 1.0;         // relative work; larger starts first
     std::vector<int> depends;  // ids of tasks that must finish first
     std::function<void(int num_threads)> run;
+    double memory = 0.0;  // expected peak memory while it runs (any unit)
   };
 
   // Returns the id of the new task; dependencies must already exist.
@@ -40,7 +46,9 @@ class TaskGraph {
   // Runs every task once, on `num_workers` threads, and returns when all
   // have finished. If a task throws, its dependents still run (they see
   // its missing output); the first exception is rethrown at the end.
-  void Run(int num_workers);
+  // `memory_budget` (the unit of Task::memory; <= 0: none) bounds the sum
+  // of the running tasks' memory.
+  void Run(int num_workers, double memory_budget = 0.0);
 
  private:
   std::vector<Task> tasks_;

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace tmr {
 namespace {
@@ -83,6 +86,44 @@ TEST(TaskGraph, ConcurrentTasksShareTheWorkers) {
   // possibly the last, which may find itself alone.
   EXPECT_GE(total, 4);
   EXPECT_LE(total, 5);
+}
+
+// Runs tasks of the given memory on `workers` threads within `budget`;
+// returns the most memory the running tasks held at once.
+double PeakMemoryOfRun(const std::vector<double>& memory, int workers,
+                       double budget) {
+  TaskGraph graph;
+  std::mutex mutex;
+  double in_use = 0.0, peak = 0.0;
+  for (const double m : memory) {
+    graph.Add({"",
+               m,
+               {},
+               [&, m](int) {
+                 {
+                   std::lock_guard<std::mutex> lock(mutex);
+                   in_use += m;
+                   peak = std::max(peak, in_use);
+                 }
+                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                 std::lock_guard<std::mutex> lock(mutex);
+                 in_use -= m;
+               },
+               m});
+  }
+  graph.Run(workers, budget);
+  return peak;
+}
+
+TEST(TaskGraph, RunningTasksStayWithinTheMemoryBudget) {
+  // Four workers, but only two tasks of 40 fit in 100 at once; a task of 30
+  // fits beside one of 60.
+  EXPECT_LE(PeakMemoryOfRun({40, 40, 40, 40, 40}, 4, 100), 100);
+  EXPECT_LE(PeakMemoryOfRun({60, 30, 60, 30, 10}, 4, 100), 100);
+}
+
+TEST(TaskGraph, ATaskAboveTheBudgetRunsAlone) {
+  EXPECT_EQ(PeakMemoryOfRun({150, 20, 20}, 3, 100), 150);
 }
 
 TEST(TaskGraph, AThrowingTaskEndsTheRunWithItsException) {

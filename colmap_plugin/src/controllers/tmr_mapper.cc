@@ -11,6 +11,7 @@
 #include <thread>
 #include <unordered_set>
 
+#include "controllers/memory_budget.h"
 #include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_report.h"
 #include "controllers/tmr_mapper_stages.h"
@@ -71,23 +72,25 @@ void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
 // Kernel k's cluster merge (TmrMapperStages::MergeCluster) as a task of the
 // graph: it runs once `depends` have finished, if *cache then holds the
 // correspondences; its notes go to `progress`, its row to `record` (when
-// it gave a model), its model to *cluster. The callbacks are called from
-// worker threads.
+// it gave a model), its model to *cluster; `memory_mib` is its expected
+// memory. The callbacks are called from worker threads.
 TaskGraph::Task ClusterMergeTask(
     const TmrMapperStages& stages, int k, std::vector<int> depends,
     const std::shared_ptr<const colmap::DatabaseCache>* cache,
     const std::function<void(const std::string&)>& progress,
     const std::function<void(const TmrTaskReport&)>& record,
-    std::shared_ptr<colmap::Reconstruction>* cluster) {
+    std::shared_ptr<colmap::Reconstruction>* cluster, double memory_mib) {
   return {"merge", 0.1 * stages.tree().kernels[k].cluster_images.size(),
-          std::move(depends), [=, &stages](int threads) {
+          std::move(depends),
+          [=, &stages](int threads) {
             if (!*cache) return;
             TmrTaskReport row;
             std::vector<std::string> notes;
             *cluster = stages.MergeCluster(k, *cache, threads, &row, &notes);
             for (const std::string& note : notes) progress(note);
             if (*cluster) record(row);
-          }};
+          },
+          memory_mib};
 }
 
 // The in-process run: the stages of TmrMapperStages on one task graph,
@@ -104,8 +107,9 @@ class TmrMapperRun {
 
   bool Run(std::string* error) {
     start_ = Clock::now();
-    if (!stages_.Plan(
-            report_, [this](const std::string& l) { Progress(l); }, error))
+    const auto progress = [this](const std::string& l) { Progress(l); };
+    if (!stages_.Plan(report_, progress, error) ||
+        !stages_.CheckMemory(/*one_process=*/true, progress, error))
       return false;
     if (!RunTaskGraph(error)) return false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
@@ -215,7 +219,7 @@ class TmrMapperRun {
                    kernel ? weight : weight + 0.3 * task.num_base_images,
                    kernel ? std::vector<int>{}
                           : std::vector<int>{kernel_node[task.kernel]},
-                   run});
+                   run, task.memory_mib});
       if (kernel) kernel_node[task.kernel] = id;
       merge_depends[task.kernel].push_back(id);
     }
@@ -226,10 +230,12 @@ class TmrMapperRun {
                   stages_, k, merge_depends[k], &cache_,
                   [this](const std::string& note) { Progress(note); },
                   [this, node](const TmrTaskReport& row) { Record(row, node); },
-                  &clusters_[k]));
+                  &clusters_[k], stages_.ClusterMergeMemoryMiB(k)));
     }
     graph_start_ = Clock::now();
-    graph.Run(threads_);
+    // The correspondences of all images stay loaded beside the tasks.
+    graph.Run(threads_, ResolveMemoryBudget(o_.memory_budget).mib -
+                            stages_.CorrespondencesMemoryMiB());
     if (!cache_) return Fail(cache_error, error);
     if (!task_error.empty()) return Fail(task_error, error);
     return true;
@@ -272,25 +278,28 @@ bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
   return run.Run(error);
 }
 
-bool PlanTmrMapper(const TmrMapperOptions& options,
-                   std::vector<TmrMapperTask>* tasks, std::string* error,
+bool PlanTmrMapper(const TmrMapperOptions& options, TmrMapperPlan* plan,
+                   std::string* error,
                    const std::function<void(const std::string&)>& progress) {
   TmrMapperOptions effective;
   if (!Prepare(options, &effective, error)) return false;
   TmrMapperStages stages(effective);
   TmrMapperReport report;
-  if (!stages.Plan(&report, progress, error)) return false;
-  *tasks = stages.Tasks();
+  if (!stages.Plan(&report, progress, error) ||
+      !stages.CheckMemory(/*one_process=*/false, progress, error))
+    return false;
+  *plan = {stages.Tasks(), report.num_images, stages.MergeMemoryMiB()};
   return true;
 }
 
-bool ReadTmrMapperPlan(const TmrMapperOptions& options,
-                       std::vector<TmrMapperTask>* tasks, std::string* error) {
+bool ReadTmrMapperPlan(const TmrMapperOptions& options, TmrMapperPlan* plan,
+                       std::string* error) {
   TmrMapperOptions effective;
   if (!Prepare(options, &effective, error)) return false;
   TmrMapperStages stages(effective);
   if (!stages.Load(error)) return false;
-  *tasks = stages.Tasks();
+  *plan = {stages.Tasks(), static_cast<int>(stages.tree().image_ids.size()),
+           stages.MergeMemoryMiB()};
   return true;
 }
 
@@ -333,6 +342,15 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
              "); run them first (tmr_mapper run_task)";
     return false;
   }
+  const MemoryBudget budget = ResolveMemoryBudget(effective.memory_budget);
+  if (progress) {
+    progress("memory: budget " + GiBText(budget.mib) + " (" + budget.source +
+             "); the merge stage is expected to need " +
+             GiBText(stages.MergeMemoryMiB()));
+    const std::string warning =
+        MergeOverBudgetWarning(stages.MergeMemoryMiB(), budget);
+    if (!warning.empty()) progress(warning);
+  }
   const auto cache = stages.LoadCache(error);
   if (!cache) return false;
   std::mutex mutex;
@@ -354,8 +372,8 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
       stages.tree().kernels.size());
   TaskGraph graph;
   for (int k = 0; k < static_cast<int>(clusters.size()); ++k)
-    graph.Add(
-        ClusterMergeTask(stages, k, {}, &cache, note, record, &clusters[k]));
+    graph.Add(ClusterMergeTask(stages, k, {}, &cache, note, record,
+                               &clusters[k], /*memory_mib=*/0.0));
   graph.Run(threads);
   clusters.erase(std::remove(clusters.begin(), clusters.end(), nullptr),
                  clusters.end());

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -72,11 +73,14 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
     progress("resuming: reusing the tasks an earlier run finished in " +
              work_.folder().string());
   }
+  EstimateMemory(graph);
   std::ostringstream plan;
+  plan << std::fixed << std::setprecision(0);
   for (const TmrMapperTask& task : Tasks()) {
     plan << task.id << " " << task.num_images << " " << task.num_base_images
-         << "\n";
+         << " " << task.memory_mib << "\n";
   }
+  plan << "merge " << graph.NumImages() << " 0 " << MergeMemoryMiB() << "\n";
   const fs::path out(o_.output_path);
   if (!WriteTmrTreeJsonFile(tree_, o_.output_path) ||
       !WriteFileAtomically((out / "plan.txt").string(), plan.str())) {
@@ -116,6 +120,7 @@ bool TmrMapperStages::Load(std::string* error) {
   }
   for (const MatchGraphImage& image : images)
     tree_.image_ids.push_back(image.image_id);
+  if (!ReadPlanMemory(error)) return false;
   TmrTree untimed = tree_;
   untimed.timing = {};
   if (!work_.Attach(RunFingerprint(o_, TreeJson(untimed)))) {
@@ -147,8 +152,21 @@ std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
   for (TmrMapperTask& task : tasks) {
     ReconstructionTaskResult result;
     task.finished = work_.Finished(Model(task), &result);
+    if (const auto it = memory_mib_.find(task.id); it != memory_mib_.end())
+      task.memory_mib = it->second;
   }
   return tasks;
+}
+
+std::vector<int> TmrMapperStages::TaskImages(const TmrMapperTask& task) const {
+  const TmrKernelNode& node = tree_.kernels.at(task.kernel);
+  std::vector<int> images = node.kernel_images;
+  if (task.leaf >= 0) {
+    for (const auto* part :
+         {&node.leaf_clusters.at(task.leaf), &node.leaf_halos.at(task.leaf)})
+      images.insert(images.end(), part->begin(), part->end());
+  }
+  return images;
 }
 
 std::string TmrMapperStages::Model(const TmrMapperTask& task) const {
@@ -239,21 +257,15 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     }
     // The kernel images, except those a part model of the kernel holds
     // (no image in two models), and the leaf's: the leaf task may also
-    // register kernel images its kernel task left.
+    // register kernel images its kernel task left. The leaf's share of the
+    // cluster's halo (images of neighbouring clusters) is registered here
+    // too, so that the cluster models share cameras and points when the
+    // tasks end.
     const std::unordered_set<uint32_t> parts(kernel.part_images.begin(),
                                              kernel.part_images.end());
-    for (const uint32_t id : ImageIdsOf(tree_, node.kernel_images))
+    for (const uint32_t id : ImageIdsOf(tree_, TaskImages(task)))
       if (!parts.count(id)) images.push_back(id);
-    for (const uint32_t id :
-         ImageIdsOf(tree_, node.leaf_clusters.at(task.leaf)))
-      images.push_back(id);
-    // The leaf's share of the cluster's halo (images of neighbouring
-    // clusters): registered here too, so that the cluster models share
-    // cameras and points when the tasks end.
-    for (const uint32_t id : ImageIdsOf(tree_, node.leaf_halos.at(task.leaf))) {
-      images.push_back(id);
-      halo.push_back(id);
-    }
+    halo = ImageIdsOf(tree_, node.leaf_halos.at(task.leaf));
     base_model = work_.KernelModel(task.kernel);
     mapper.fix_existing_frames = o_.task.fix_base_in_leaves;
   }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "controllers/task_workspace.h"
@@ -21,8 +22,10 @@ namespace tmr {
 // assembly. RunTmrMapper runs them in one process on its task graph; the
 // staged entry points (PlanTmrMapper, RunTmrMapperTask, MergeTmrMapper) run
 // them in separate processes, possibly on other machines sharing
-// output_path. What one task needs of another (a leaf task of its kernel's
-// result) it reads from disk in both cases, so both give the same models.
+// output_path (the expected memory of each step is in
+// tmr_mapper_memory.cc). What one task needs of another (a leaf task of its
+// kernel's result) it reads from disk in both cases, so both give the same
+// models.
 class TmrMapperStages {
  public:
   using Progress = std::function<void(const std::string&)>;
@@ -43,8 +46,23 @@ class TmrMapperStages {
   bool resuming() const { return work_.resuming(); }
   const TaskWorkspace& work() const { return work_; }
 
-  // Every kernel task, then every leaf task, with its state on disk.
+  // Every kernel task, then every leaf task, with its state on disk and its
+  // expected memory.
   std::vector<TmrMapperTask> Tasks() const;
+  // The merge stage's expected peak memory (MiB).
+  double MergeMemoryMiB() const;
+
+  // Says at the start what the run expects to need against
+  // options.memory_budget; false with `error` when a task would not fit
+  // (`one_process`: beside the correspondences of all images, which the
+  // one-process run holds from its start). The merge stage above the
+  // budget is a warning.
+  bool CheckMemory(bool one_process, const Progress& progress,
+                   std::string* error) const;
+  // Expected memory (MiB) of the correspondences of all images and of
+  // kernel k's cluster merge; known after Plan only.
+  double CorrespondencesMemoryMiB() const { return correspondences_mib_; }
+  double ClusterMergeMemoryMiB(int k) const { return cluster_mib_.at(k); }
 
   // Runs a kernel or leaf task, or reuses its finished result
   // (row.reused). A leaf task whose kernel task failed records a failed
@@ -88,6 +106,13 @@ class TmrMapperStages {
     std::vector<uint32_t> part_images;  // in the kernel's part models
   };
   KernelState ReadKernelState(int k) const;
+  // A task's images (tree indices): a kernel task its kernel's; a leaf
+  // task its kernel's, then its leaf cluster's and its halo.
+  std::vector<int> TaskImages(const TmrMapperTask& task) const;
+  // Fills the expected memory of every step (controllers/memory_budget.h).
+  void EstimateMemory(const MatchGraph& graph);
+  // Reads the expected memory of every step from plan.txt.
+  bool ReadPlanMemory(std::string* error);
   std::string Model(const TmrMapperTask& task) const;
   // A task's report row; a leaf's counts are relative to `kernel`, its
   // kernel's state (unused for a kernel task).
@@ -98,6 +123,10 @@ class TmrMapperStages {
   const TmrMapperOptions& o_;
   TaskWorkspace work_;
   TmrTree tree_;
+  // Expected peak memory (MiB) by task id, and of the "merge" stage.
+  std::unordered_map<std::string, double> memory_mib_;
+  double correspondences_mib_ = 0.0;
+  std::vector<double> cluster_mib_;
 };
 
 }  // namespace tmr

@@ -141,6 +141,11 @@ struct TmrMapperOptions {
   int num_threads = -1;  // --Mapper.num_threads
   // Keep the task databases and models in output_path/.tmr_work.
   bool keep_work = false;  // --Tmr.keep_work
+  // The memory every step must stay under, in GiB; 0: half of the memory
+  // this process may use (the machine's, or a Slurm job's or container's
+  // limit). A task expected to need more stops the run before it starts;
+  // tasks run side by side only as far as it allows.
+  double memory_budget = 0.0;  // --Tmr.memory_budget
   // Reuse the kernel and leaf tasks that a killed run into the same
   // output_path finished (output_path/.tmr_work), when the database, the
   // partition and the task options are the same; otherwise start clean.
@@ -248,21 +253,31 @@ struct TmrMapperTask {
   int num_images = 0;       // the kernel's or leaf cluster's images
   int num_base_images = 0;  // a leaf task also carries its kernel's
   bool finished = false;    // a complete result is on disk
+  // The expected peak memory of a process that runs it (MiB).
+  double memory_mib = 0.0;
 };
 
-// Stage 1: the TMR-tree (tree.json), the task plan (plan.txt: id, images,
-// base images per line) and the work folder (output_path/.tmr_work); a
-// plan made again with the same database and options keeps the finished
-// tasks. `tasks` receives the plan.
+// The plan of a staged run: its tasks, and the merge stage after them.
+struct TmrMapperPlan {
+  std::vector<TmrMapperTask> tasks;
+  int num_images = 0;
+  double merge_memory_mib = 0.0;  // the merge stage's expected peak
+};
+
+// Stage 1: the TMR-tree (tree.json), the task plan (plan.txt: per line a
+// task's id, images, base images and expected memory in MiB, then "merge",
+// all images, 0 and the merge stage's memory) and the work folder
+// (output_path/.tmr_work); a plan made again with the same database and
+// options keeps the finished tasks. False when a task would not fit
+// options.memory_budget.
 bool PlanTmrMapper(
-    const TmrMapperOptions& options, std::vector<TmrMapperTask>* tasks,
-    std::string* error,
+    const TmrMapperOptions& options, TmrMapperPlan* plan, std::string* error,
     const std::function<void(const std::string&)>& progress = nullptr);
 
 // The plan in output_path with the state of each task. False when there is
 // none, or when it was made from another database or with other options.
-bool ReadTmrMapperPlan(const TmrMapperOptions& options,
-                       std::vector<TmrMapperTask>* tasks, std::string* error);
+bool ReadTmrMapperPlan(const TmrMapperOptions& options, TmrMapperPlan* plan,
+                       std::string* error);
 
 // Stage 2: one task by id; a finished task is not run again, so a rerun is
 // safe. A leaf task needs its kernel task finished.

@@ -1,0 +1,95 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "controllers/memory_budget.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "tmr/util/process.h"
+
+namespace tmr {
+namespace {
+
+constexpr double kMiB = 1024.0 * 1024.0;
+
+// Measured rates (docs/mapper.md, "Memory"), in bytes unless named MiB.
+// A process with COLMAP loaded, before any data.
+constexpr double kProcessMiB = 130.0;
+// A kernel or leaf task: per keypoint stored and per matched keypoint of
+// its images.
+constexpr double kTaskPerKeypoint = 60.0;
+constexpr double kTaskPerMatchedKeypoint = 900.0;
+// COLMAP's correspondence cache of all images.
+constexpr double kCachePerKeypoint = 40.0;
+constexpr double kCachePerMatchedKeypoint = 200.0;
+// The cluster models and the scene beside the cache, per matched keypoint.
+constexpr double kModelsPerMatchedKeypoint = 150.0;
+// The adjustment on the longest tracks: per image and track.
+constexpr double kLongestTracksPerImageTrack = 1360.0;
+// A block adjustment with all points: per matched keypoint of the block.
+constexpr double kBlockPerMatchedKeypoint = 790.0;
+
+}  // namespace
+
+MemoryLoad LoadOfImages(const MatchGraph& graph,
+                        const std::vector<int>& images) {
+  MemoryLoad load;
+  for (const int i : images) {
+    ++load.images;
+    load.keypoints += graph.images.at(i).num_keypoints;
+    load.matched_keypoints += graph.images.at(i).num_matched_keypoints;
+  }
+  return load;
+}
+
+double TaskPeakMiB(const MemoryLoad& task) {
+  return kProcessMiB + (kTaskPerKeypoint * task.keypoints +
+                        kTaskPerMatchedKeypoint * task.matched_keypoints) /
+                           kMiB;
+}
+
+double CorrespondencesMiB(const MemoryLoad& scene) {
+  return (kCachePerKeypoint * scene.keypoints +
+          kCachePerMatchedKeypoint * scene.matched_keypoints) /
+         kMiB;
+}
+
+double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
+                    int max_block_images) {
+  const double held =
+      kProcessMiB + CorrespondencesMiB(scene) +
+      kModelsPerMatchedKeypoint * scene.matched_keypoints / kMiB;
+  const double longest = kLongestTracksPerImageTrack * scene.images *
+                         longest_tracks_per_image / kMiB;
+  const double block_share =
+      max_block_images > 0 && scene.images > max_block_images
+          ? static_cast<double>(max_block_images) / scene.images
+          : 1.0;
+  const double block =
+      kBlockPerMatchedKeypoint * block_share * scene.matched_keypoints / kMiB;
+  return held + std::max(longest, block);
+}
+
+MemoryBudget ResolveMemoryBudget(double budget_gib) {
+  if (budget_gib > 0) return {budget_gib * 1024.0, "--Tmr.memory_budget"};
+  const double available = AvailableMemoryMiB();
+  if (available <= 0)
+    return {8 * 1024.0, "8 GiB: this system does not say its memory"};
+  return {available / 2,
+          "half of the " + GiBText(available) + " this process may use"};
+}
+
+std::string MergeOverBudgetWarning(double merge_mib,
+                                   const MemoryBudget& budget) {
+  if (merge_mib <= budget.mib) return "";
+  return "warning: the merge stage is expected to need " + GiBText(merge_mib) +
+         ", above the memory budget of " + GiBText(budget.mib) +
+         "; it does not yet run by parts";
+}
+
+std::string GiBText(double mib) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f GiB", mib / 1024.0);
+  return text;
+}
+
+}  // namespace tmr

@@ -1,0 +1,60 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tmr/scene/match_graph.h"
+
+namespace tmr {
+
+// What a step of tmr_mapper loads, which its memory grows with.
+struct MemoryLoad {
+  int64_t images = 0;
+  int64_t keypoints = 0;          // stored for those images
+  int64_t matched_keypoints = 0;  // in a verified match (n_i of Eq. 1)
+};
+
+// The load of `images` (indices into graph.images).
+MemoryLoad LoadOfImages(const MatchGraph& graph,
+                        const std::vector<int>& images);
+
+// A model of the peak resident memory of tmr_mapper's steps, in MiB, from
+// their loads; rates measured on tmr_synth cities with COLMAP 4.1
+// (docs/mapper.md, "Memory"). A task's figure includes the process it runs
+// in; a step inside a larger process adds the rest to that process's.
+//
+// One kernel or leaf task: COLMAP's correspondences of its images, its
+// model and the global adjustments of the incremental mapper.
+double TaskPeakMiB(const MemoryLoad& task);
+// The correspondences of all images (COLMAP's DatabaseCache of the merge
+// database), held from the first cluster merge to the end of the run.
+double CorrespondencesMiB(const MemoryLoad& scene);
+// The merge stage at its peak: the correspondences, the cluster models and
+// the scene, and the larger of the two adjustments of the whole scene:
+// every pose on `longest_tracks_per_image` tracks, then blocks of up to
+// `max_block_images` images (0: the whole scene) with all their points.
+double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
+                    int max_block_images);
+
+// The memory every step must fit (--Tmr.memory_budget).
+struct MemoryBudget {
+  double mib = 0.0;
+  // Where it comes from, for the start line: "--Tmr.memory_budget" or
+  // "half of the 23.4 GiB this process may use".
+  std::string source;
+};
+// `budget_gib` > 0, or half of AvailableMemoryMiB() (tmr/util/process.h);
+// 8 GiB where that is unknown.
+MemoryBudget ResolveMemoryBudget(double budget_gib);
+
+// The warning when the merge stage is expected to need more than the
+// budget; "" when it fits.
+std::string MergeOverBudgetWarning(double merge_mib,
+                                   const MemoryBudget& budget);
+
+// "1.25 GiB".
+std::string GiBText(double mib);
+
+}  // namespace tmr

@@ -1,0 +1,109 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// TmrMapperStages' expected memory of every step (controllers/memory_budget.h)
+// and the check of the plan against options.memory_budget.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include "controllers/memory_budget.h"
+#include "controllers/tmr_mapper_stages.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool Fail(const std::string& message, std::string* error) {
+  *error = message;
+  return false;
+}
+
+}  // namespace
+
+double TmrMapperStages::MergeMemoryMiB() const {
+  const auto it = memory_mib_.find("merge");
+  return it == memory_mib_.end() ? 0.0 : it->second;
+}
+
+void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
+  memory_mib_.clear();
+  for (const TmrMapperTask& task : Tasks())
+    memory_mib_[task.id] = TaskPeakMiB(LoadOfImages(graph, TaskImages(task)));
+  std::vector<int> all(graph.NumImages());
+  std::iota(all.begin(), all.end(), 0);
+  const MemoryLoad scene = LoadOfImages(graph, all);
+  memory_mib_["merge"] = MergePeakMiB(scene, o_.refinement.points_per_image,
+                                      o_.refinement.max_block_images);
+  correspondences_mib_ = CorrespondencesMiB(scene);
+  cluster_mib_.clear();
+  for (const TmrKernelNode& node : tree_.kernels)
+    cluster_mib_.push_back(
+        TaskPeakMiB(LoadOfImages(graph, node.cluster_images)));
+}
+
+bool TmrMapperStages::ReadPlanMemory(std::string* error) {
+  const std::string path = (fs::path(o_.output_path) / "plan.txt").string();
+  std::ifstream plan(path);
+  std::string line;
+  memory_mib_.clear();
+  while (std::getline(plan, line)) {
+    std::istringstream fields(line);
+    std::string id;
+    int images = 0, base = 0;
+    double mib = 0.0;
+    if (!(fields >> id >> images >> base >> mib)) {
+      return Fail("cannot read '" + path + "' (line '" + line +
+                      "'); make the plan again (tmr_mapper partition)",
+                  error);
+    }
+    memory_mib_[id] = mib;
+  }
+  return true;
+}
+
+bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
+                                  std::string* error) const {
+  const MemoryBudget budget = ResolveMemoryBudget(o_.memory_budget);
+  const std::vector<TmrMapperTask> tasks = Tasks();
+  const auto largest = std::max_element(
+      tasks.begin(), tasks.end(),
+      [](const auto& a, const auto& b) { return a.memory_mib < b.memory_mib; });
+  const double beside = one_process ? correspondences_mib_ : 0.0;
+  if (progress) {
+    std::string line = "memory: budget " + GiBText(budget.mib) + " (" +
+                       budget.source + "); expected peaks: ";
+    if (largest != tasks.end()) {
+      line += "tasks up to " + GiBText(largest->memory_mib) + " (" +
+              largest->id + ", " +
+              std::to_string(largest->num_images + largest->num_base_images) +
+              " images), ";
+    }
+    if (one_process)
+      line += "correspondences of all images " + GiBText(beside) + ", ";
+    progress(line + "merge stage " + GiBText(MergeMemoryMiB()));
+  }
+  if (largest != tasks.end() && largest->memory_mib + beside > budget.mib) {
+    return Fail(
+        "the memory budget of " + GiBText(budget.mib) + " (" + budget.source +
+            ") is too small for task " + largest->id + ": about " +
+            GiBText(largest->memory_mib) + " for its " +
+            std::to_string(largest->num_images + largest->num_base_images) +
+            " images" +
+            (one_process ? ", beside " + GiBText(beside) +
+                               " of correspondences of all images"
+                         : "") +
+            "; give --Tmr.memory_budget " +
+            std::to_string(static_cast<int>(
+                std::ceil((largest->memory_mib + beside) / 1024.0))) +
+            " or more",
+        error);
+  }
+  const std::string warning = MergeOverBudgetWarning(MergeMemoryMiB(), budget);
+  if (progress && !warning.empty()) progress(warning);
+  return true;
+}
+
+}  // namespace tmr

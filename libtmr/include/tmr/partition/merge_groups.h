@@ -1,0 +1,37 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tmr/scene/match_graph.h"
+
+namespace tmr {
+
+// The verified matches between two image clusters: n_ij (Eq. 1) summed
+// over the pairs with one image in each. cluster1 < cluster2.
+struct ClusterLink {
+  int cluster1 = 0;
+  int cluster2 = 0;
+  int64_t num_matches = 0;
+};
+
+// Every pair of clusters that verified pairs link, sorted by (cluster1,
+// cluster2). `cluster_of` gives each image's cluster (-1: none).
+std::vector<ClusterLink> LinkClusters(const MatchGraph& graph,
+                                      const std::vector<int>& cluster_of);
+
+// Groups of image clusters for the merge stage by parts: each group is
+// merged on its own, within a memory budget, and the groups are then
+// joined. Greedy region growing on the cluster graph: the costliest
+// cluster not yet grouped seeds a group, which takes, one at a time, the
+// ungrouped cluster with the most verified matches into it whose cost
+// still fits `max_cost`, until none does. A group is thus connected and
+// holds strongly linked clusters together; a cluster costlier than
+// `max_cost` is a group alone. Each group is sorted, groups in the order
+// they were seeded. Deterministic (ties go to the smaller index).
+std::vector<std::vector<int>> GroupClusters(
+    const std::vector<double>& cost, const std::vector<ClusterLink>& links,
+    double max_cost);
+
+}  // namespace tmr

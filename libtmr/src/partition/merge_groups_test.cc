@@ -1,0 +1,70 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "tmr/partition/merge_groups.h"
+
+#include <gtest/gtest.h>
+
+namespace tmr {
+namespace {
+
+// Images 0..5 in clusters 0, 0, 1, 1, 2, -1.
+MatchGraph SixImages() {
+  MatchGraph graph;
+  for (int i = 0; i < 6; ++i) graph.images.push_back({uint32_t(i + 1)});
+  graph.pairs = {{0, 1, 500}, {0, 2, 40}, {1, 3, 60}, {2, 4, 30},
+                 {3, 4, 5},   {4, 5, 90}, {0, 5, 70}};
+  return graph;
+}
+
+TEST(MergeGroups, LinksSumTheMatchesBetweenClusters) {
+  const std::vector<ClusterLink> links =
+      LinkClusters(SixImages(), {0, 0, 1, 1, 2, -1});
+  ASSERT_EQ(links.size(), 2u);
+  EXPECT_EQ(links[0].cluster1, 0);
+  EXPECT_EQ(links[0].cluster2, 1);
+  EXPECT_EQ(links[0].num_matches, 100);
+  EXPECT_EQ(links[1].cluster1, 1);
+  EXPECT_EQ(links[1].cluster2, 2);
+  EXPECT_EQ(links[1].num_matches, 35);
+}
+
+TEST(MergeGroups, EverythingInOneGroupWhenItFits) {
+  const auto groups = GroupClusters({1, 2, 3}, {{0, 1, 10}, {1, 2, 5}}, 10);
+  EXPECT_EQ(groups, (std::vector<std::vector<int>>{{0, 1, 2}}));
+}
+
+TEST(MergeGroups, GroupsFollowTheStrongestLinksWithinTheBudget) {
+  // A chain 0 - 1 - 2 - 3 - 4 - 5 with a weak link between 2 and 3: two
+  // groups of three, cut at the weak link.
+  const std::vector<ClusterLink> links = {
+      {0, 1, 900}, {1, 2, 800}, {2, 3, 10}, {3, 4, 700}, {4, 5, 600}};
+  const auto groups = GroupClusters({1, 1, 1, 1.5, 1, 1}, links, 3.5);
+  EXPECT_EQ(groups, (std::vector<std::vector<int>>{{3, 4, 5}, {0, 1, 2}}));
+}
+
+TEST(MergeGroups, EveryClusterInExactlyOneGroupWithinTheBudget) {
+  std::vector<double> cost;
+  std::vector<ClusterLink> links;
+  for (int c = 0; c < 40; ++c) {
+    cost.push_back(1 + c % 4);
+    if (c > 0) links.push_back({c - 1, c, 100 + (c * 37) % 50});
+    if (c > 7) links.push_back({c - 8, c, 50});
+  }
+  cost[5] = 20;  // above the budget: a group of its own
+  const auto groups = GroupClusters(cost, links, 10);
+  std::vector<int> seen(cost.size(), 0);
+  for (const auto& group : groups) {
+    double total = 0;
+    for (const int c : group) {
+      ++seen[c];
+      total += cost[c];
+    }
+    if (group.size() > 1) EXPECT_LE(total, 10);
+  }
+  for (const int s : seen) EXPECT_EQ(s, 1);
+  EXPECT_EQ(groups.front(), std::vector<int>{5});
+  // Deterministic.
+  EXPECT_EQ(GroupClusters(cost, links, 10), groups);
+}
+
+}  // namespace
+}  // namespace tmr
