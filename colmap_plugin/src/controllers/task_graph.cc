@@ -97,7 +97,10 @@ void TaskGraph::Run(int num_workers, double memory_budget) {
       ready.erase(ready.begin() + next);
       ++running;
       memory_in_use += tasks_[t].memory;
-      const int share = static_cast<int>(ready.size()) + running;
+      // The workers go to the tasks that can run now: those running and
+      // the ready ones that fit beside them.
+      const int share = running + static_cast<int>(std::count_if(
+                                      ready.begin(), ready.end(), fits));
       const int threads = std::max(1, num_workers / std::max(1, share));
       lock.unlock();
       try {

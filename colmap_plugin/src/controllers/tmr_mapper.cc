@@ -107,9 +107,9 @@ class TmrMapperRun {
 
   bool Run(std::string* error) {
     start_ = Clock::now();
-    const auto progress = [this](const std::string& l) { Progress(l); };
-    if (!stages_.Plan(report_, progress, error) ||
-        !stages_.CheckMemory(/*one_process=*/true, progress, error))
+    if (!stages_.Plan(
+            report_, /*one_process=*/true,
+            [this](const std::string& l) { Progress(l); }, error))
       return false;
     if (!RunTaskGraph(error)) return false;
     std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
@@ -234,8 +234,8 @@ class TmrMapperRun {
     }
     graph_start_ = Clock::now();
     // The correspondences of all images stay loaded beside the tasks.
-    graph.Run(threads_, ResolveMemoryBudget(o_.memory_budget).mib -
-                            stages_.CorrespondencesMemoryMiB());
+    graph.Run(threads_, std::max(1.0, stages_.budget().mib -
+                                          stages_.CorrespondencesMemoryMiB()));
     if (!cache_) return Fail(cache_error, error);
     if (!task_error.empty()) return Fail(task_error, error);
     return true;
@@ -285,8 +285,7 @@ bool PlanTmrMapper(const TmrMapperOptions& options, TmrMapperPlan* plan,
   if (!Prepare(options, &effective, error)) return false;
   TmrMapperStages stages(effective);
   TmrMapperReport report;
-  if (!stages.Plan(&report, progress, error) ||
-      !stages.CheckMemory(/*one_process=*/false, progress, error))
+  if (!stages.Plan(&report, /*one_process=*/false, progress, error))
     return false;
   *plan = {stages.Tasks(), report.num_images, stages.MergeMemoryMiB()};
   return true;
@@ -342,7 +341,7 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
              "); run them first (tmr_mapper run_task)";
     return false;
   }
-  const MemoryBudget budget = ResolveMemoryBudget(effective.memory_budget);
+  const MemoryBudget& budget = stages.budget();
   if (progress) {
     progress("memory: budget " + GiBText(budget.mib) + " (" + budget.source +
              "); the merge stage is expected to need " +

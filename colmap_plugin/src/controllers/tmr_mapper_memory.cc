@@ -53,12 +53,13 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
     std::istringstream fields(line);
     std::string id;
     int images = 0, base = 0;
-    double mib = 0.0;
-    if (!(fields >> id >> images >> base >> mib)) {
+    double mib = 0.0;  // unknown in a plan made before it was written
+    if (!(fields >> id >> images >> base)) {
       return Fail("cannot read '" + path + "' (line '" + line +
                       "'); make the plan again (tmr_mapper partition)",
                   error);
     }
+    fields >> mib;
     memory_mib_[id] = mib;
   }
   return true;
@@ -66,7 +67,7 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
 
 bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
                                   std::string* error) const {
-  const MemoryBudget budget = ResolveMemoryBudget(o_.memory_budget);
+  const MemoryBudget& budget = budget_;
   const std::vector<TmrMapperTask> tasks = Tasks();
   const auto largest = std::max_element(
       tasks.begin(), tasks.end(),
@@ -86,20 +87,31 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
     progress(line + "merge stage " + GiBText(MergeMemoryMiB()));
   }
   if (largest != tasks.end() && largest->memory_mib + beside > budget.mib) {
-    return Fail(
-        "the memory budget of " + GiBText(budget.mib) + " (" + budget.source +
-            ") is too small for task " + largest->id + ": about " +
-            GiBText(largest->memory_mib) + " for its " +
-            std::to_string(largest->num_images + largest->num_base_images) +
-            " images" +
-            (one_process ? ", beside " + GiBText(beside) +
-                               " of correspondences of all images"
-                         : "") +
-            "; give --Tmr.memory_budget " +
-            std::to_string(static_cast<int>(
-                std::ceil((largest->memory_mib + beside) / 1024.0))) +
-            " or more",
-        error);
+    const std::string need =
+        "about " + GiBText(largest->memory_mib) + " for its " +
+        std::to_string(largest->num_images + largest->num_base_images) +
+        " images";
+    // A staged plan made without a budget may be made on a smaller machine
+    // (a login node) than the ones that run its tasks.
+    if (!one_process && o_.memory_budget <= 0) {
+      if (progress) {
+        progress("warning: task " + largest->id + " needs " + need +
+                 ", more than this machine's budget of " + GiBText(budget.mib) +
+                 "; run it where it fits");
+      }
+    } else {
+      return Fail("the memory budget of " + GiBText(budget.mib) + " (" +
+                      budget.source + ") is too small for task " + largest->id +
+                      ": " + need +
+                      (one_process ? ", beside " + GiBText(beside) +
+                                         " of correspondences of all images"
+                                   : "") +
+                      "; give --Tmr.memory_budget " +
+                      std::to_string(static_cast<int>(
+                          std::ceil((largest->memory_mib + beside) / 1024.0))) +
+                      " or more",
+                  error);
+    }
   }
   const std::string warning = MergeOverBudgetWarning(MergeMemoryMiB(), budget);
   if (progress && !warning.empty()) progress(warning);

@@ -123,8 +123,9 @@ void TmrMapperOptions::AddTo(OptionTable* t) {
   task.AddTo(t);
   merge.AddTo(t);
   refinement.AddTo(t);
-  t->Add("Tmr.memory_budget", &memory_budget,
-         "memory every step must fit, GiB (0: half of this machine's)")
+  t->Add(
+       "Tmr.memory_budget", &memory_budget,
+       "memory every step must fit, GiB (0: half of what the process may use)")
       .AtLeast(0);
   t->Add("Tmr.resume", &resume,
          "reuse the tasks a killed run into OUT finished");

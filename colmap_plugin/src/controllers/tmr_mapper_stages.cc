@@ -38,10 +38,12 @@ bool Fail(const std::string& message, std::string* error) {
 }  // namespace
 
 TmrMapperStages::TmrMapperStages(const TmrMapperOptions& options)
-    : o_(options), work_(fs::path(options.output_path) / ".tmr_work") {}
+    : o_(options),
+      budget_(ResolveMemoryBudget(options.memory_budget)),
+      work_(fs::path(options.output_path) / ".tmr_work") {}
 
-bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
-                           std::string* error) {
+bool TmrMapperStages::Plan(TmrMapperReport* report, bool one_process,
+                           const Progress& progress, std::string* error) {
   DatabasePartition partition;
   try {
     partition = PartitionDatabase(o_.database_path, o_.match_graph, o_.tree);
@@ -74,6 +76,7 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, const Progress& progress,
              work_.folder().string());
   }
   EstimateMemory(graph);
+  if (!CheckMemory(one_process, progress, error)) return false;
   std::ostringstream plan;
   plan << std::fixed << std::setprecision(0);
   for (const TmrMapperTask& task : Tasks()) {
@@ -263,8 +266,10 @@ bool TmrMapperStages::RunTask(const TmrMapperTask& task, int num_threads,
     // tasks end.
     const std::unordered_set<uint32_t> parts(kernel.part_images.begin(),
                                              kernel.part_images.end());
-    for (const uint32_t id : ImageIdsOf(tree_, TaskImages(task)))
-      if (!parts.count(id)) images.push_back(id);
+    const std::vector<uint32_t> all = ImageIdsOf(tree_, TaskImages(task));
+    for (size_t i = 0; i < all.size(); ++i)
+      if (i >= node.kernel_images.size() || !parts.count(all[i]))
+        images.push_back(all[i]);
     halo = ImageIdsOf(tree_, node.leaf_halos.at(task.leaf));
     base_model = work_.KernelModel(task.kernel);
     mapper.fix_existing_frames = o_.task.fix_base_in_leaves;

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "controllers/memory_budget.h"
 #include "controllers/task_workspace.h"
 #include "tmr/colmap/tmr_mapper.h"
 
@@ -32,12 +33,14 @@ class TmrMapperStages {
 
   explicit TmrMapperStages(const TmrMapperOptions& options);
 
-  // Builds the TMR-tree, writes tree.json and plan.txt (one line per task:
-  // id, images, base images) and opens the work folder, resuming an
-  // earlier run's tasks when the database, partition and task options are
-  // the same (options.resume). Fills report->num_images and
-  // partition_seconds.
-  bool Plan(TmrMapperReport* report, const Progress& progress,
+  // Builds the TMR-tree, checks its tasks against the memory budget
+  // (CheckMemory; `one_process`: the run that follows holds the
+  // correspondences beside them), writes tree.json and plan.txt (one line
+  // per task: id, images, base images, expected MiB; then the merge's) and
+  // opens the work folder, resuming an earlier run's tasks when the
+  // database, partition and task options are the same (options.resume).
+  // Fills report->num_images and partition_seconds.
+  bool Plan(TmrMapperReport* report, bool one_process, const Progress& progress,
             std::string* error);
   // The tree and work folder of an earlier Plan with the same options.
   bool Load(std::string* error);
@@ -52,17 +55,14 @@ class TmrMapperStages {
   // The merge stage's expected peak memory (MiB).
   double MergeMemoryMiB() const;
 
-  // Says at the start what the run expects to need against
-  // options.memory_budget; false with `error` when a task would not fit
-  // (`one_process`: beside the correspondences of all images, which the
-  // one-process run holds from its start). The merge stage above the
-  // budget is a warning.
-  bool CheckMemory(bool one_process, const Progress& progress,
-                   std::string* error) const;
+  // The memory budget (options.memory_budget, resolved once).
+  const MemoryBudget& budget() const { return budget_; }
   // Expected memory (MiB) of the correspondences of all images and of
   // kernel k's cluster merge; known after Plan only.
   double CorrespondencesMemoryMiB() const { return correspondences_mib_; }
-  double ClusterMergeMemoryMiB(int k) const { return cluster_mib_.at(k); }
+  double ClusterMergeMemoryMiB(int k) const {
+    return k < static_cast<int>(cluster_mib_.size()) ? cluster_mib_[k] : 0.0;
+  }
 
   // Runs a kernel or leaf task, or reuses its finished result
   // (row.reused). A leaf task whose kernel task failed records a failed
@@ -111,8 +111,17 @@ class TmrMapperStages {
   std::vector<int> TaskImages(const TmrMapperTask& task) const;
   // Fills the expected memory of every step (controllers/memory_budget.h).
   void EstimateMemory(const MatchGraph& graph);
-  // Reads the expected memory of every step from plan.txt.
+  // Reads the expected memory of every step from plan.txt (0 where an
+  // older plan has none).
   bool ReadPlanMemory(std::string* error);
+  // Says what the run expects to need against the budget; false with
+  // `error` when a task would not fit (`one_process`: beside the
+  // correspondences of all images, which the one-process run holds from
+  // its start). A staged plan made with the default budget only warns (it
+  // may be made on a smaller machine than the tasks run on), and so does
+  // the merge stage above the budget.
+  bool CheckMemory(bool one_process, const Progress& progress,
+                   std::string* error) const;
   std::string Model(const TmrMapperTask& task) const;
   // A task's report row; a leaf's counts are relative to `kernel`, its
   // kernel's state (unused for a kernel task).
@@ -121,6 +130,7 @@ class TmrMapperStages {
                     const KernelState& kernel) const;
 
   const TmrMapperOptions& o_;
+  MemoryBudget budget_;
   TaskWorkspace work_;
   TmrTree tree_;
   // Expected peak memory (MiB) by task id, and of the "merge" stage.

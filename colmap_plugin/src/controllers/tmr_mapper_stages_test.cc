@@ -46,7 +46,8 @@ TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
   options.num_threads = 1;
   TmrMapperStages stages(options);
   TmrMapperReport report;
-  ASSERT_TRUE(stages.Plan(&report, nullptr, &error)) << error;
+  ASSERT_TRUE(stages.Plan(&report, /*one_process=*/false, nullptr, &error))
+      << error;
   const TmrTree& tree = stages.tree();
   ASSERT_GE(tree.kernels.size(), 2u);
   for (const TmrMapperTask& task : stages.Tasks()) {  // kernels first

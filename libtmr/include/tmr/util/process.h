@@ -6,7 +6,6 @@
 #include <chrono>
 #include <fstream>
 #include <string>
-#include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -47,40 +46,16 @@ inline ProcessMemory ReadProcessMemory() {
 }
 
 // The memory this process may use, in MiB: the machine's (MemTotal of
-// /proc/meminfo), or less where a control group limits it (a Slurm job's
-// --mem, a container); 0 where none is known.
-inline double AvailableMemoryMiB() {
-  double mib = 0.0;
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kib = 0.0;
-  while (meminfo >> key) {
-    if (key == "MemTotal:" && meminfo >> kib) {
-      mib = kib / 1024;
-      break;
-    }
-  }
-  // The limit of this process's control group: cgroup v2 (the group's
-  // path in /proc/self/cgroup, "0::/path"), else v1; "max" or a huge
-  // number means none.
-  std::vector<std::string> limits;
-  std::ifstream groups("/proc/self/cgroup");
-  std::string line;
-  while (std::getline(groups, line)) {
-    if (line.rfind("0::", 0) == 0)
-      limits.push_back("/sys/fs/cgroup" + line.substr(3) + "/memory.max");
-  }
-  limits.push_back("/sys/fs/cgroup/memory.max");
-  limits.push_back("/sys/fs/cgroup/memory/memory.limit_in_bytes");
-  for (const std::string& path : limits) {
-    std::ifstream limit(path);
-    double bytes = 0.0;
-    if (limit >> bytes && bytes > 0.0) {
-      const double limit_mib = bytes / (1024.0 * 1024.0);
-      if (mib <= 0.0 || limit_mib < mib) mib = limit_mib;
-    }
-  }
-  return mib;
-}
+// /proc/meminfo), or less where a control group limits it or one of its
+// parents (a Slurm job's --mem, a container; cgroup v2 memory.max or v1
+// memory.limit_in_bytes); 0 where none is known.
+double AvailableMemoryMiB();
+
+// The smallest memory limit (MiB) that `file` (memory.max,
+// memory.limit_in_bytes) sets for the control group `group` (its path in
+// /proc/self/cgroup) under `root` (/sys/fs/cgroup) or for one of its
+// parents up to `root`; 0 when none does ("max" sets none).
+double SmallestGroupLimitMiB(const std::string& root, const std::string& group,
+                             const std::string& file);
 
 }  // namespace tmr
