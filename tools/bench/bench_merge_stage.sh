@@ -22,18 +22,12 @@ THREADS="${THREADS:-2}"
 [[ -x "$BIN/tmr_synth_tasks" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
 # shellcheck source=scenes.sh
 source "$(dirname "$0")/scenes.sh"
-mkdir -p "$OUT"
-[[ -f "$OUT/results.csv" ]] ||
-  echo "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,largest,median_rot_deg,wrong_merges,expected_peak_mib" >"$OUT/results.csv"
+start_results "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,largest,median_rot_deg,wrong_merges,expected_peak_mib"
 
 for scene in "$@"; do
   dir=out/bench_mapper/$scene
-  ensure_scene "$dir" "$scene"
   run="$OUT/$scene"
-  rm -rf "$run" && mkdir -p "$run"
-  # shellcheck disable=SC2086
-  "$BIN/tmr_mapper" partition --database_path "$dir/database.db" --output_path "$run" \
-    --Mapper.num_threads "$THREADS" ${TMR_ARGS:-} >"$run.partition.log" 2>&1
+  plan_scene "$scene" "$run" "$THREADS"
   tasks=$(grep -c -v "^merge " "$run/plan.txt")
   start=$(date +%s.%N)
   # shellcheck disable=SC2086

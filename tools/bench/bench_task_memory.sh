@@ -21,18 +21,11 @@ THREADS="${THREADS:-2}"
 [[ -x "$BIN/tmr_mapper" ]] || { echo "run tools/build.sh first" >&2; exit 1; }
 # shellcheck source=scenes.sh
 source "$(dirname "$0")/scenes.sh"
-mkdir -p "$OUT"
-[[ -f "$OUT/results.csv" ]] ||
-  echo "scene,task,images,expected_mib,peak_mib,seconds" >"$OUT/results.csv"
+start_results "scene,task,images,expected_mib,peak_mib,seconds"
 
 for scene in "$@"; do
-  dir=out/bench_mapper/$scene
-  ensure_scene "$dir" "$scene"
   run="$OUT/$scene"
-  rm -rf "$run" && mkdir -p "$run"
-  # shellcheck disable=SC2086
-  "$BIN/tmr_mapper" partition --database_path "$dir/database.db" --output_path "$run" \
-    --Mapper.num_threads 1 ${TMR_ARGS:-} >"$run.status" 2>"$run.partition.log"
+  plan_scene "$scene" "$run" 1
   grep '^\[tmr.*memory:' "$run.status" | sed 's/^[^]]*] /  /' || true
   # id images base state expected_mib; leaves sorted by expected memory.
   kernel=$(awk '$1 ~ /^kernel\./' "$run.status" | sort -k5,5n | tail -1 | cut -d' ' -f1)

@@ -32,3 +32,22 @@ ensure_scene() {
       >"$dir/geometric_verifier.log" 2>&1
   fi
 }
+
+# Writes SCENE's plan into RUN (emptied first) with `tmr_mapper partition`
+# on THREADS threads and TMR_ARGS: the scene is made first if need be
+# (ensure_scene, in out/bench_mapper/SCENE); the plan and progress lines go
+# to RUN.status, errors to RUN.partition.log.
+plan_scene() {
+  local scene=$1 run=$2 threads=$3 dir=out/bench_mapper/$1
+  ensure_scene "$dir" "$scene"
+  rm -rf "$run" && mkdir -p "$run"
+  # shellcheck disable=SC2086
+  "$BIN/tmr_mapper" partition --database_path "$dir/database.db" --output_path "$run" \
+    --Mapper.num_threads "$threads" ${TMR_ARGS:-} >"$run.status" 2>"$run.partition.log"
+}
+
+# Makes OUT and its results.csv with the columns HEADER unless it exists.
+start_results() {
+  mkdir -p "$OUT"
+  [[ -f "$OUT/results.csv" ]] || echo "$1" >"$OUT/results.csv"
+}

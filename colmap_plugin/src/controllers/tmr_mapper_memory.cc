@@ -10,6 +10,7 @@
 
 #include "controllers/memory_budget.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "tmr/partition/merge_groups.h"
 
 namespace tmr {
 namespace {
@@ -42,6 +43,28 @@ void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
   for (const TmrKernelNode& node : tree_.kernels)
     cluster_mib_.push_back(
         TaskPeakMiB(LoadOfImages(graph, node.cluster_images)));
+  // The groups of clusters a merge stage by parts would take (issue 43,
+  // item 2): each cluster with its halo, at its own merge stage's peak.
+  merge_groups_.clear();
+  if (MergeMemoryMiB() <= budget_.mib) return;
+  std::vector<int> cluster_of(graph.NumImages(), -1);
+  std::vector<double> cost;
+  for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    std::vector<int> images = node.cluster_images;
+    for (const int i : node.cluster_images) cluster_of[i] = k;
+    for (const auto& halo : node.leaf_halos)
+      images.insert(images.end(), halo.begin(), halo.end());
+    cost.push_back(MergePeakMiB(LoadOfImages(graph, images),
+                                o_.refinement.points_per_image,
+                                o_.refinement.max_block_images));
+  }
+  for (const std::vector<int>& group :
+       GroupClusters(cost, LinkClusters(graph, cluster_of), budget_.mib)) {
+    double mib = 0.0;
+    for (const int k : group) mib += cost[k];
+    merge_groups_.push_back(mib);
+  }
 }
 
 bool TmrMapperStages::ReadPlanMemory(std::string* error) {
@@ -114,7 +137,15 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
     }
   }
   const std::string warning = MergeOverBudgetWarning(MergeMemoryMiB(), budget);
-  if (progress && !warning.empty()) progress(warning);
+  if (progress && !warning.empty()) {
+    const double largest_group =
+        merge_groups_.empty()
+            ? 0.0
+            : *std::max_element(merge_groups_.begin(), merge_groups_.end());
+    progress(warning + " (by parts: " + std::to_string(merge_groups_.size()) +
+             " groups of clusters, the largest about " +
+             GiBText(largest_group) + ")");
+  }
   return true;
 }
 

@@ -65,6 +65,15 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, bool one_process,
   tree_ = std::move(partition.tree);
   report->num_images = graph.NumImages();
   report->partition_seconds = partition.seconds;
+  if (progress) {
+    progress("partition: " + std::to_string(tree_.kernels.size()) +
+             " kernels (" + DescribeKernels(tree_) + "), " +
+             std::to_string(tree_.unclustered.size()) +
+             " unclustered images (" +
+             std::to_string(report->partition_seconds) + " s)");
+  }
+  if (tree_.kernels.empty())
+    return Fail("the partition found no kernel", error);
   // The kernel and leaf tasks a killed run finished are reused when the
   // database, the partition and the options of the tasks are the same.
   TmrTree untimed = tree_;
@@ -91,15 +100,6 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, bool one_process,
         "cannot write tree.json and plan.txt in '" + o_.output_path + "'",
         error);
   }
-  if (progress) {
-    progress("partition: " + std::to_string(tree_.kernels.size()) +
-             " kernels (" + DescribeKernels(tree_) + "), " +
-             std::to_string(tree_.unclustered.size()) +
-             " unclustered images (" +
-             std::to_string(report->partition_seconds) + " s)");
-  }
-  if (tree_.kernels.empty())
-    return Fail("the partition found no kernel", error);
   return true;
 }
 

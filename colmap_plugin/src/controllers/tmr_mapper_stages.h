@@ -137,6 +137,9 @@ class TmrMapperStages {
   std::unordered_map<std::string, double> memory_mib_;
   double correspondences_mib_ = 0.0;
   std::vector<double> cluster_mib_;
+  // Expected peak (MiB) of each group of clusters that a merge stage by
+  // parts would merge apart; empty when the whole merge fits the budget.
+  std::vector<double> merge_groups_;
 };
 
 }  // namespace tmr
