@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// TmrMapperStages' expected memory of every step (controllers/memory_budget.h)
-// and the check of the plan against options.memory_budget.
+// TmrMapperStages' images of each task, the expected memory of every step
+// (controllers/memory_budget.h) and the check of the plan against
+// options.memory_budget.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -27,6 +28,17 @@ bool Fail(const std::string& message, std::string* error) {
 double TmrMapperStages::MergeMemoryMiB() const {
   const auto it = memory_mib_.find("merge");
   return it == memory_mib_.end() ? 0.0 : it->second;
+}
+
+std::vector<int> TmrMapperStages::TaskImages(const TmrMapperTask& task) const {
+  const TmrKernelNode& node = tree_.kernels.at(task.kernel);
+  std::vector<int> images = node.kernel_images;
+  if (task.leaf >= 0) {
+    for (const auto* part :
+         {&node.leaf_clusters.at(task.leaf), &node.leaf_halos.at(task.leaf)})
+      images.insert(images.end(), part->begin(), part->end());
+  }
+  return images;
 }
 
 void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {

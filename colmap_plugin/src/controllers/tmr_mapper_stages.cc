@@ -161,17 +161,6 @@ std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
   return tasks;
 }
 
-std::vector<int> TmrMapperStages::TaskImages(const TmrMapperTask& task) const {
-  const TmrKernelNode& node = tree_.kernels.at(task.kernel);
-  std::vector<int> images = node.kernel_images;
-  if (task.leaf >= 0) {
-    for (const auto* part :
-         {&node.leaf_clusters.at(task.leaf), &node.leaf_halos.at(task.leaf)})
-      images.insert(images.end(), part->begin(), part->end());
-  }
-  return images;
-}
-
 std::string TmrMapperStages::Model(const TmrMapperTask& task) const {
   return task.leaf < 0 ? work_.KernelModel(task.kernel)
                        : work_.LeafModel(task.kernel, task.leaf);
