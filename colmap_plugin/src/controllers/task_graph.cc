@@ -28,17 +28,6 @@ bool Before(const std::vector<double>& priority, int a, int b) {
   return priority[a] > priority[b] || (priority[a] == priority[b] && a < b);
 }
 
-// Removes from `ready` and returns its task of highest priority.
-int TakeHighestPriority(const std::vector<double>& priority,
-                        std::vector<int>* ready) {
-  const auto best =
-      std::min_element(ready->begin(), ready->end(),
-                       [&](int a, int b) { return Before(priority, a, b); });
-  const int t = *best;
-  ready->erase(best);
-  return t;
-}
-
 // The position in `ready` of the task of highest priority that `fits`, or
 // -1.
 template <typename Fits>
@@ -50,6 +39,16 @@ int BestFitting(const std::vector<double>& priority,
       best = i;
   }
   return best;
+}
+
+// Removes from `ready` (not empty) and returns its task of highest
+// priority.
+int TakeHighestPriority(const std::vector<double>& priority,
+                        std::vector<int>* ready) {
+  const int best = BestFitting(priority, *ready, [](int) { return true; });
+  const int t = (*ready)[best];
+  ready->erase(ready->begin() + best);
+  return t;
 }
 
 }  // namespace

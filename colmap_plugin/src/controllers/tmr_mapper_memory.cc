@@ -43,7 +43,7 @@ std::vector<int> TmrMapperStages::TaskImages(const TmrMapperTask& task) const {
 
 void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
   memory_mib_.clear();
-  for (const TmrMapperTask& task : Tasks())
+  for (const TmrMapperTask& task : PlannedTasks())
     memory_mib_[task.id] = TaskPeakMiB(LoadOfImages(graph, TaskImages(task)));
   std::vector<int> all(graph.NumImages());
   std::iota(all.begin(), all.end(), 0);
@@ -103,7 +103,7 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
 bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
                                   std::string* error) const {
   const MemoryBudget& budget = budget_;
-  const std::vector<TmrMapperTask> tasks = Tasks();
+  const std::vector<TmrMapperTask> tasks = PlannedTasks();
   const auto largest = std::max_element(
       tasks.begin(), tasks.end(),
       [](const auto& a, const auto& b) { return a.memory_mib < b.memory_mib; });

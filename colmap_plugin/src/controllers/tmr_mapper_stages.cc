@@ -88,7 +88,7 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, bool one_process,
   if (!CheckMemory(one_process, progress, error)) return false;
   std::ostringstream plan;
   plan << std::fixed << std::setprecision(0);
-  for (const TmrMapperTask& task : Tasks()) {
+  for (const TmrMapperTask& task : PlannedTasks()) {
     plan << task.id << " " << task.num_images << " " << task.num_base_images
          << " " << task.memory_mib << "\n";
   }
@@ -136,6 +136,15 @@ bool TmrMapperStages::Load(std::string* error) {
 }
 
 std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
+  std::vector<TmrMapperTask> tasks = PlannedTasks();
+  for (TmrMapperTask& task : tasks) {
+    ReconstructionTaskResult result;
+    task.finished = work_.Finished(Model(task), &result);
+  }
+  return tasks;
+}
+
+std::vector<TmrMapperTask> TmrMapperStages::PlannedTasks() const {
   std::vector<TmrMapperTask> tasks;
   for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
     const TmrKernelNode& node = tree_.kernels[k];
@@ -153,8 +162,6 @@ std::vector<TmrMapperTask> TmrMapperStages::Tasks() const {
     }
   }
   for (TmrMapperTask& task : tasks) {
-    ReconstructionTaskResult result;
-    task.finished = work_.Finished(Model(task), &result);
     if (const auto it = memory_mib_.find(task.id); it != memory_mib_.end())
       task.memory_mib = it->second;
   }

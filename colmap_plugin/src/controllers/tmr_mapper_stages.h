@@ -106,6 +106,8 @@ class TmrMapperStages {
     std::vector<uint32_t> part_images;  // in the kernel's part models
   };
   KernelState ReadKernelState(int k) const;
+  // Tasks() without their state on disk (finished is false).
+  std::vector<TmrMapperTask> PlannedTasks() const;
   // A task's images (tree indices): a kernel task its kernel's; a leaf
   // task its kernel's, then its leaf cluster's and its halo.
   std::vector<int> TaskImages(const TmrMapperTask& task) const;
