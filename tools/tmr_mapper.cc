@@ -7,7 +7,8 @@
 //   tmr_mapper partition --database_path DB --output_path OUT [options]
 //   tmr_mapper run_task --plan OUT/plan.txt --task ID [--Mapper.num_threads N]
 //   tmr_mapper status --plan OUT/plan.txt
-//   tmr_mapper merge --plan OUT/plan.txt [--Mapper.num_threads N]
+//   tmr_mapper merge --plan OUT/plan.txt [--group merge.G]
+//     [--Mapper.num_threads N]
 // The later stages take the options from OUT/project.ini, which partition
 // writes with absolute paths. Each stage is a call of the library
 // (tmr/colmap/tmr_mapper.h); `tmr_mapper STAGE --help` lists its options.
@@ -46,7 +47,8 @@ const std::map<std::string, std::string>& StageUsage() {
        "todo"},
       {"merge",
        "tmr_mapper merge --plan OUT/plan.txt: merges the finished tasks into "
-       "the models OUT/0, 1, ..."}};
+       "the models OUT/0, 1, ... (by parts: --group merge.G merges one "
+       "group of the plan)"}};
   return usage;
 }
 
@@ -83,8 +85,10 @@ void WriteProjectIni(const std::string& stage, const tmr::TmrMapperOptions& o,
 }
 
 // partition and status: one line per task (id, images, base images, state
-// done or todo, expected memory in MiB), then the merge stage's (all
-// images; ready once every task is done, else waits).
+// done or todo, expected memory in MiB), by parts one per group of the
+// merge stage (done, ready once its clusters' tasks are done, else waits),
+// then the merge stage's (all images; ready once every task is done, else
+// waits).
 int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
                  const std::function<void(const std::string&)>& progress) {
   tmr::TmrMapperPlan plan;
@@ -99,6 +103,13 @@ int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
   for (const tmr::TmrMapperTask& t : plan.tasks) {
     std::cout << t.id << " " << t.num_images << " " << t.num_base_images << " "
               << (t.finished ? "done" : "todo") << " " << t.memory_mib << "\n";
+  }
+  for (const tmr::TmrMergeGroup& g : plan.merge_groups) {
+    std::cout << g.id << " " << g.num_images << " 0 "
+              << (g.merged  ? "done"
+                  : g.ready ? "ready"
+                            : "waits")
+              << " " << g.memory_mib << "\n";
   }
   const bool ready = std::all_of(plan.tasks.begin(), plan.tasks.end(),
                                  [](const auto& t) { return t.finished; });
@@ -157,7 +168,7 @@ int main(int argc, char** argv) {
   }
   tmr::TmrMapperOptions o;
   bool verbose = false;
-  std::string plan, task;
+  std::string plan, task, group;
   po::options_description desc(StageUsage().at(stage));
   desc.add_options()("help,h", "print this help")(
       "database_path", po::value(&o.database_path)->required(),
@@ -168,7 +179,9 @@ int main(int argc, char** argv) {
       "folder for the models 0, 1, ...")(
       "plan", po::value(&plan),
       "run_task, status, merge: OUT/plan.txt of a partition stage")(
-      "task", po::value(&task), "run_task: kernel.K or leaf.K.L");
+      "task", po::value(&task), "run_task: kernel.K or leaf.K.L")(
+      "group", po::value(&group),
+      "merge: only this group (merge.G) of a merge stage by parts");
   tmr::AddOption(&desc, "verbose", &verbose, "show COLMAP's own log");
   tmr::AddOptionsOf(&desc, &o);
 
@@ -206,6 +219,12 @@ int main(int argc, char** argv) {
     if (stage == "partition" || stage == "status")
       return PlanOrStatus(stage, o, progress);
     if (stage == "run_task") return RunTask(o, task);
+    if (stage == "merge" && !group.empty()) {
+      if (!tmr::MergeTmrMapperGroup(o, group, &error, progress))
+        return Error(error);
+      std::cout << "tmr_mapper: " << group << " merged\n";
+      return 0;
+    }
     return RunOrMerge(stage, o, progress);
   } catch (const std::exception& e) {
     return Error(e.what());

@@ -3,7 +3,9 @@
 # a tmr_synth scene reconstructed through Slurm array jobs must give the
 # models of the one-command tmr_mapper run (same models, same images, poses
 # equal up to bundle-adjustment noise), and a rerun after a lost task
-# submits that task alone and ends with the same models.
+# submits that task alone and ends with the same models. With a memory
+# budget below the merge stage's, the merge runs by parts (an array job of
+# group merges, then the join) and gives the same models too.
 #
 #   tmr_slurm_test.sh TMR_SYNTH TMR_MAPPER TMR_EVAL WORK_DIR
 # Exits 77 (skipped) when Slurm's daemons are not installed.
@@ -30,30 +32,33 @@ trap '"$slurm" stop "$work/slurm"' EXIT
 # shellcheck disable=SC1091
 source "$work/slurm/env"
 
-# Submits through tmr_slurm, waits for its jobs, prints tmr_slurm's output.
+# Submits through tmr_slurm into $work/${1:-staged} (further arguments go to
+# tmr_slurm), waits for its jobs, prints tmr_slurm's output.
 run_slurm() {
+  local out=$work/${1:-staged}
   "$here/../../tools/tmr_slurm" --tmr_mapper "$mapper" --cpus_per_task 1 \
-    --database_path "$work/database.db" --output_path "$work/staged" \
-    --Tmr.keep_work 1 > "$work/submit.log" || fail "tmr_slurm: $(cat "$work/submit.log")"
+    --database_path "$work/database.db" --output_path "$out" \
+    --Tmr.keep_work 1 "${@:2}" > "$work/submit.log" || fail "tmr_slurm: $(cat "$work/submit.log")"
   cat "$work/submit.log"
   # shellcheck disable=SC2046
-  LOCAL_SLURM_WAIT_TIMEOUT=900 "$slurm" wait "$work/slurm" $(cat "$work/staged/slurm/jobs.txt") ||
-    fail "a job did not complete; logs in $work/staged/slurm"
+  LOCAL_SLURM_WAIT_TIMEOUT=900 "$slurm" wait "$work/slurm" $(cat "$out/slurm/jobs.txt") ||
+    fail "a job did not complete; logs in $out/slurm"
 }
 
-# The staged models against the in-process ones, model by model.
+# The models in $work/${1:-staged} against the in-process ones, model by
+# model.
 compare() {
-  python3 - "$work" "$eval_tool" <<'PY' || fail "the staged models differ"
+  python3 - "$work" "$eval_tool" "${1:-staged}" <<'PY' || fail "the staged models differ"
 import json, subprocess, sys
-work, eval_tool = sys.argv[1:]
+work, eval_tool, staged = sys.argv[1:]
 a = json.load(open(f"{work}/in_process/report.json"))["model_sizes"]
-b = json.load(open(f"{work}/staged/report.json"))["model_sizes"]
+b = json.load(open(f"{work}/{staged}/report.json"))["model_sizes"]
 print("in process:", a, " staged:", b)
 assert a == b, "different models"
 for i in range(len(a)):
     out = f"{work}/eval{i}.json"
     subprocess.run([eval_tool, "--gt", f"{work}/in_process/{i}", "--model",
-                    f"{work}/staged/{i}", "--output_json", out], check=True,
+                    f"{work}/{staged}/{i}", "--output_json", out], check=True,
                    stdout=subprocess.DEVNULL)
     m = json.load(open(out))["models"][0]
     rot = m["rotation_error_deg"]["max"]
@@ -80,4 +85,10 @@ if [[ $(grep -c "^leaf tasks" "$work/submit.log") != 1 ]] ||
   fail "expected one leaf task again"
 fi
 compare
+
+# The merge stage by parts: 3 groups of one cluster each in this scene.
+run_slurm parts --Tmr.memory_budget 0.2
+grep -q "^merge by parts: job .* (3 groups)" "$work/submit.log" ||
+  fail "expected an array job of 3 group merges"
+compare parts
 echo "tmr_slurm_test: passed"

@@ -12,7 +12,11 @@
 # Usage: tools/bench/bench_merge_stage.sh SCENE ...   (e.g. city3 city6 city10)
 # Environment: THREADS (default 2); NOISE_ARGS adds options to
 # tmr_synth_tasks (e.g. "--rotation_noise_deg 0.05"); TMR_ARGS adds options
-# to the partition (and so to the merge).
+# to the partition (and so to the merge); TAG names such a variant (its
+# runs go to out/bench_merge_stage/SCENE-TAG, e.g. TAG=parts with
+# TMR_ARGS="--Tmr.memory_budget 1" for a merge stage by parts). The
+# expected peak is the largest step's: the whole merge, or by parts the
+# largest group's or the join's.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -26,9 +30,9 @@ start_results "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,la
 
 for scene in "$@"; do
   dir=out/bench_mapper/$scene
-  run="$OUT/$scene"
+  run="$OUT/$scene${TAG:+-$TAG}"
   plan_scene "$scene" "$run" "$THREADS"
-  tasks=$(grep -c -v "^merge " "$run/plan.txt")
+  tasks=$(grep -c -E "^(kernel|leaf)\." "$run/plan.txt")
   start=$(date +%s.%N)
   # shellcheck disable=SC2086
   "$BIN/tmr_synth_tasks" --plan "$run/plan.txt" --model_path "$dir/gt" ${NOISE_ARGS:-} >"$run.synth.log" 2>&1
@@ -36,9 +40,9 @@ for scene in "$@"; do
   /usr/bin/time -f "%e %M" -o "$run.merge.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
     --Mapper.num_threads "$THREADS" >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
   read -r wall peak < <(tail -1 "$run.merge.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
-  read -r _ _ _ expected < <(grep '^merge ' "$run/plan.txt")
+  expected=$(awk '/^merge/ && $4 > max { max = $4 } END { print max }' "$run/plan.txt")
   "$BIN/tmr_eval" --gt "$dir/gt" --model "$run" --output_json "$run/eval.json" >/dev/null 2>&1
-  python3 - "$run/eval.json" "$scene" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" "$expected" <<'PY'
+  python3 - "$run/eval.json" "$scene${TAG:+-$TAG}" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" "$expected" <<'PY'
 import json, sys
 models = json.load(open(sys.argv[1]))["models"]
 scene, tasks, synth, wall, peak, csv, expected = sys.argv[2:9]

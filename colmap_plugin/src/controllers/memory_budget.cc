@@ -69,6 +69,11 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   return held + std::max(longest, block);
 }
 
+double JoinPeakMiB(const MemoryLoad& scene, const MemoryLoad& seams) {
+  return kProcessMiB + CorrespondencesMiB(seams) +
+         kModelsPerMatchedKeypoint * scene.matched_keypoints / kMiB;
+}
+
 MemoryBudget ResolveMemoryBudget(double budget_gib) {
   if (budget_gib > 0) return {budget_gib * 1024.0, "--Tmr.memory_budget"};
   const double available = AvailableMemoryMiB();

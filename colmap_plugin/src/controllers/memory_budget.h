@@ -37,6 +37,10 @@ double CorrespondencesMiB(const MemoryLoad& scene);
 // `max_block_images` images (0: the whole scene) with all their points.
 double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
                     int max_block_images);
+// The join of a merge stage by parts (docs/distributed.md): the models of
+// every group, and the correspondences of the `seams`, the images that
+// several groups hold.
+double JoinPeakMiB(const MemoryLoad& scene, const MemoryLoad& seams);
 
 // The memory every step must fit (--Tmr.memory_budget).
 struct MemoryBudget {

@@ -96,6 +96,18 @@ std::string TaskWorkspace::MergeDatabase() const {
   return (folder_ / "merge.db").string();
 }
 
+std::string TaskWorkspace::GroupDatabase(int g) const {
+  return (folder_ / ("group" + std::to_string(g) + ".db")).string();
+}
+
+std::string TaskWorkspace::GroupModels(int g) const {
+  return (folder_ / ("group" + std::to_string(g))).string();
+}
+
+std::string TaskWorkspace::JoinDatabase() const {
+  return (folder_ / "join.db").string();
+}
+
 std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(
     const std::string& model, const std::string& source_database,
     const std::vector<uint32_t>& images,

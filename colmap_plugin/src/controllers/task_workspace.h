@@ -48,6 +48,12 @@ class TaskWorkspace {
   std::string LeafModel(int k, int l) const;
   // A task database of all images, for the merges and the completion.
   std::string MergeDatabase() const;
+  // A merge stage by parts: group g's task database and its models
+  // (folder/0, 1, ... and a record, TmrMapperStages::MergeGroup), and the
+  // task database of the images several groups hold, for the join.
+  std::string GroupDatabase(int g) const;
+  std::string GroupModels(int g) const;
+  std::string JoinDatabase() const;
 
   // Whether the task whose model is `model` has finished: its record and
   // (when it succeeded) its model are complete; the record in `result`.

@@ -4,9 +4,11 @@
 #include <colmap/scene/database_cache.h>
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <mutex>
+#include <numeric>
 #include <sstream>
 #include <thread>
 #include <unordered_set>
@@ -69,30 +71,6 @@ void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
   if (!o.keep_work) fs::remove_all(stages.work().folder());
 }
 
-// Kernel k's cluster merge (TmrMapperStages::MergeCluster) as a task of the
-// graph: it runs once `depends` have finished, if *cache then holds the
-// correspondences; its notes go to `progress`, its row to `record` (when
-// it gave a model), its model to *cluster; `memory_mib` is its expected
-// memory. The callbacks are called from worker threads.
-TaskGraph::Task ClusterMergeTask(
-    const TmrMapperStages& stages, int k, std::vector<int> depends,
-    const std::shared_ptr<const colmap::DatabaseCache>* cache,
-    const std::function<void(const std::string&)>& progress,
-    const std::function<void(const TmrTaskReport&)>& record,
-    std::shared_ptr<colmap::Reconstruction>* cluster, double memory_mib) {
-  return {"merge", 0.1 * stages.tree().kernels[k].cluster_images.size(),
-          std::move(depends),
-          [=, &stages](int threads) {
-            if (!*cache) return;
-            TmrTaskReport row;
-            std::vector<std::string> notes;
-            *cluster = stages.MergeCluster(k, *cache, threads, &row, &notes);
-            for (const std::string& note : notes) progress(note);
-            if (*cluster) record(row);
-          },
-          memory_mib};
-}
-
 // The in-process run: the stages of TmrMapperStages on one task graph,
 // with progress lines and an ETA.
 class TmrMapperRun {
@@ -112,14 +90,19 @@ class TmrMapperRun {
             [this](const std::string& l) { Progress(l); }, error))
       return false;
     if (!RunTaskGraph(error)) return false;
-    std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
-    for (auto& cluster : clusters_)
-      if (cluster) clusters.push_back(std::move(cluster));
-    if (!stages_.AssembleAndWrite(
-            std::move(clusters), cache_, threads_,
-            [this](const TmrTaskReport& t) { Record(t); },
-            [this](const std::string& l) { Progress(l); }, report_, error))
-      return false;
+    const auto record = [this](const TmrTaskReport& t) { Record(t); };
+    const auto progress = [this](const std::string& l) { Progress(l); };
+    if (!stages_.cluster_groups().empty()) {
+      if (!stages_.JoinGroups(threads_, record, progress, report_, error))
+        return false;
+    } else {
+      std::vector<std::shared_ptr<colmap::Reconstruction>> clusters;
+      for (auto& cluster : clusters_)
+        if (cluster) clusters.push_back(std::move(cluster));
+      if (!stages_.AssembleAndWrite(std::move(clusters), cache_, threads_,
+                                    record, progress, report_, error))
+        return false;
+    }
     Finish(o_, stages_, start_, /*timeline=*/true, progress_, report_);
     return true;
   }
@@ -146,7 +129,10 @@ class TmrMapperRun {
     task.rss_mib = memory.rss_mib;
     task.peak_mib = memory.peak_mib;
     const int row = static_cast<int>(report_->tasks.size());
-    if (node >= 0) {
+    if (node >= 0 && row_of_node_[node] >= 0) {
+      task.depends = {row_of_node_[node]};  // a node's steps form a chain
+      row_of_node_[node] = row;
+    } else if (node >= 0) {
       for (const int d : node_depends_[node])
         if (row_of_node_[d] >= 0) task.depends.push_back(row_of_node_[d]);
       row_of_node_[node] = row;
@@ -176,41 +162,47 @@ class TmrMapperRun {
   // only for its kernel, a cluster merge only for its own leaves. Costs are
   // rough seconds per image measured on tmr_synth cities: about one per
   // image reconstructed, a leaf's fixed base a third of that, a merge a
-  // tenth per image.
+  // tenth per image. By parts, a group's merge (with its cluster merges)
+  // waits for its clusters' tasks, and no correspondences of all images
+  // are loaded.
   bool RunTaskGraph(std::string* error) {
     const TmrTree& tree = stages_.tree();
+    const bool by_parts = !stages_.cluster_groups().empty();
     clusters_.assign(tree.kernels.size(), nullptr);
     TaskGraph graph;
     std::string cache_error;
-    const int cache = AddNode(
-        &graph, {"load correspondences", 1e12, {}, [&](int) {
-                   const auto load_start = Clock::now();
-                   cache_ = stages_.LoadCache(&cache_error);
-                   if (cache_) {
-                     const int n = static_cast<int>(tree.image_ids.size());
-                     Record({"load correspondences", n, n,
-                             SecondsSince(load_start), true, ""},
-                            /*node=*/0);  // the first node
-                   }
-                 }});
-    std::vector<std::vector<int>> merge_depends(tree.kernels.size(), {cache});
+    std::vector<std::vector<int>> merge_depends(tree.kernels.size());
+    if (!by_parts) {
+      const int cache = AddNode(
+          &graph, {"load correspondences", 1e12, {}, [&](int) {
+                     const auto load_start = Clock::now();
+                     cache_ = stages_.LoadCache(&cache_error);
+                     if (cache_) {
+                       const int n = static_cast<int>(tree.image_ids.size());
+                       Record({"load correspondences", n, n,
+                               SecondsSince(load_start), true, ""},
+                              /*node=*/0);  // the first node
+                     }
+                   }});
+      for (auto& depends : merge_depends) depends.push_back(cache);
+    }
     std::vector<int> kernel_node(tree.kernels.size(), -1);
     total_weight_ = done_weight_ = 0.0;
     std::mutex error_mutex;
     std::string task_error;
+    auto fail = [&](const std::string& message) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (task_error.empty()) task_error = message;
+    };
     for (const TmrMapperTask& task : stages_.Tasks()) {
       const double weight = task.num_images;
       total_weight_ += weight;
       const int node = graph.NumTasks();
-      auto run = [this, task, weight, node, &error_mutex,
-                  &task_error](int threads) {
+      auto run = [this, task, weight, node, fail](int threads) {
         TmrTaskReport row;
         std::string e;
-        if (!stages_.RunTask(task, threads, &row, &e)) {
-          std::lock_guard<std::mutex> lock(error_mutex);
-          if (task_error.empty()) task_error = task.id + ": " + e;
-          return;
-        }
+        if (!stages_.RunTask(task, threads, &row, &e))
+          return fail(task.id + ": " + e);
         Record(row, node, weight);
       };
       const bool kernel = task.leaf < 0;
@@ -223,20 +215,45 @@ class TmrMapperRun {
       if (kernel) kernel_node[task.kernel] = id;
       merge_depends[task.kernel].push_back(id);
     }
-    for (int k = 0; k < static_cast<int>(tree.kernels.size()); ++k) {
+    const auto progress = [this](const std::string& l) { Progress(l); };
+    const auto& groups = stages_.cluster_groups();
+    for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
+      std::vector<int> depends;
+      for (const int k : groups[g].kernels)
+        depends.insert(depends.end(), merge_depends[k].begin(),
+                       merge_depends[k].end());
+      const int node = graph.NumTasks();
+      AddNode(&graph, {"merge group", 0.1 * groups[g].num_images, depends,
+                       [this, g, node, progress, fail](int threads) {
+                         std::string e;
+                         if (!stages_.MergeGroup(
+                                 g, threads,
+                                 [this, node](const TmrTaskReport& row) {
+                                   Record(row, node);
+                                 },
+                                 progress, &e))
+                           fail("merge group " + std::to_string(g) + ": " + e);
+                       },
+                       groups[g].memory_mib});
+    }
+    for (int k = 0; !by_parts && k < static_cast<int>(tree.kernels.size());
+         ++k) {
       const int node = graph.NumTasks();
       AddNode(&graph,
-              ClusterMergeTask(
-                  stages_, k, merge_depends[k], &cache_,
-                  [this](const std::string& note) { Progress(note); },
+              stages_.ClusterMergeTask(
+                  k, merge_depends[k], &cache_, progress,
                   [this, node](const TmrTaskReport& row) { Record(row, node); },
-                  &clusters_[k], stages_.ClusterMergeMemoryMiB(k)));
+                  &clusters_[k]));
     }
     graph_start_ = Clock::now();
-    // The correspondences of all images stay loaded beside the tasks.
-    graph.Run(threads_, std::max(1.0, stages_.budget().mib -
-                                          stages_.CorrespondencesMemoryMiB()));
-    if (!cache_) return Fail(cache_error, error);
+    // Without parts, the correspondences of all images stay loaded beside
+    // the tasks.
+    graph.Run(
+        threads_,
+        std::max(1.0,
+                 stages_.budget().mib -
+                     (by_parts ? 0.0 : stages_.CorrespondencesMemoryMiB())));
+    if (!by_parts && !cache_) return Fail(cache_error, error);
     if (!task_error.empty()) return Fail(task_error, error);
     return true;
   }
@@ -266,6 +283,27 @@ class TmrMapperRun {
   double total_weight_ = 0.0, done_weight_ = 0.0;
 };
 
+// The staged plan of `stages`: its tasks, the groups of a merge stage by
+// parts, with their state on disk.
+TmrMapperPlan PlanOf(const TmrMapperStages& stages) {
+  TmrMapperPlan plan{stages.Tasks(),
+                     static_cast<int>(stages.tree().image_ids.size()),
+                     stages.MergeMemoryMiB(),
+                     {}};
+  const auto& groups = stages.cluster_groups();
+  for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
+    TmrMergeGroup group{"merge." + std::to_string(g), groups[g].num_images,
+                        true, stages.GroupMerged(g), groups[g].memory_mib};
+    for (const TmrMapperTask& task : plan.tasks) {
+      if (!task.finished && std::count(groups[g].kernels.begin(),
+                                       groups[g].kernels.end(), task.kernel))
+        group.ready = false;
+    }
+    plan.merge_groups.push_back(group);
+  }
+  return plan;
+}
+
 }  // namespace
 
 bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
@@ -287,7 +325,7 @@ bool PlanTmrMapper(const TmrMapperOptions& options, TmrMapperPlan* plan,
   TmrMapperReport report;
   if (!stages.Plan(&report, /*one_process=*/false, progress, error))
     return false;
-  *plan = {stages.Tasks(), report.num_images, stages.MergeMemoryMiB()};
+  *plan = PlanOf(stages);
   return true;
 }
 
@@ -297,8 +335,7 @@ bool ReadTmrMapperPlan(const TmrMapperOptions& options, TmrMapperPlan* plan,
   if (!Prepare(options, &effective, error)) return false;
   TmrMapperStages stages(effective);
   if (!stages.Load(error)) return false;
-  *plan = {stages.Tasks(), static_cast<int>(stages.tree().image_ids.size()),
-           stages.MergeMemoryMiB()};
+  *plan = PlanOf(stages);
   return true;
 }
 
@@ -343,15 +380,19 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
   }
   const MemoryBudget& budget = stages.budget();
   if (progress) {
+    const size_t num_groups = stages.cluster_groups().size();
     progress("memory: budget " + GiBText(budget.mib) + " (" + budget.source +
              "); the merge stage is expected to need " +
-             GiBText(stages.MergeMemoryMiB()));
-    const std::string warning =
-        MergeOverBudgetWarning(stages.MergeMemoryMiB(), budget);
+             (num_groups == 0
+                  ? GiBText(stages.MergeMemoryMiB())
+                  : "up to " + GiBText(stages.LargestGroupMiB()) + " in " +
+                        std::to_string(num_groups) +
+                        " groups of clusters merged apart, " +
+                        GiBText(stages.MergeMemoryMiB()) + " to join them"));
+    const std::string warning = MergeOverBudgetWarning(
+        std::max(stages.MergeMemoryMiB(), stages.LargestGroupMiB()), budget);
     if (!warning.empty()) progress(warning);
   }
-  const auto cache = stages.LoadCache(error);
-  if (!cache) return false;
   std::mutex mutex;
   auto note = [&](const std::string& line) {
     std::lock_guard<std::mutex> lock(mutex);
@@ -365,22 +406,61 @@ bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
     report->tasks.push_back(row);
     if (progress) progress(row.name + ": " + row.message);
   };
-  // Cluster merges on the task graph, as in the one-command run.
   const int threads = NumThreads(effective);
-  std::vector<std::shared_ptr<colmap::Reconstruction>> clusters(
-      stages.tree().kernels.size());
-  TaskGraph graph;
-  for (int k = 0; k < static_cast<int>(clusters.size()); ++k)
-    graph.Add(ClusterMergeTask(stages, k, {}, &cache, note, record,
-                               &clusters[k], /*memory_mib=*/0.0));
-  graph.Run(threads);
-  clusters.erase(std::remove(clusters.begin(), clusters.end(), nullptr),
-                 clusters.end());
-  if (!stages.AssembleAndWrite(std::move(clusters), cache, threads, record,
-                               progress, report, error))
-    return false;
+  const int num_groups = static_cast<int>(stages.cluster_groups().size());
+  if (num_groups > 0) {
+    // By parts: each group within the budget, one after the other, then
+    // the join.
+    for (int g = 0; g < num_groups; ++g)
+      if (!stages.MergeGroup(g, threads, record, note, error)) return false;
+    if (!stages.JoinGroups(threads, record, note, report, error)) return false;
+  } else {
+    const auto cache = stages.LoadCache(error);
+    if (!cache) return false;
+    std::vector<int> kernels(stages.tree().kernels.size());
+    std::iota(kernels.begin(), kernels.end(), 0);
+    if (!stages.AssembleAndWrite(
+            stages.MergeClusters(kernels, cache, threads, record, note), cache,
+            threads, record, progress, report, error))
+      return false;
+  }
   Finish(effective, stages, start, /*timeline=*/false, progress, report);
   return true;
+}
+
+bool MergeTmrMapperGroup(
+    const TmrMapperOptions& options, const std::string& group_id,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress) {
+  TmrMapperOptions effective;
+  if (!Prepare(options, &effective, error)) return false;
+  TmrMapperStages stages(effective);
+  if (!stages.Load(error)) return false;
+  const TmrMapperPlan plan = PlanOf(stages);
+  for (int g = 0; g < static_cast<int>(plan.merge_groups.size()); ++g) {
+    if (plan.merge_groups[g].id != group_id) continue;
+    if (!plan.merge_groups[g].ready) {
+      *error = group_id +
+               " waits for tasks of its clusters; run them first (tmr_mapper "
+               "run_task)";
+      return false;
+    }
+    std::mutex mutex;
+    auto note = [&](const std::string& line) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (progress) progress(line);
+    };
+    auto record = [&](const TmrTaskReport& row) {
+      note(row.name + ": " + row.message);
+    };
+    return stages.MergeGroup(g, NumThreads(effective), record, note, error);
+  }
+  *error = "the plan has no merge group '" + group_id + "'" +
+           (plan.merge_groups.empty()
+                ? " (its merge stage fits the memory budget whole: tmr_mapper "
+                  "merge)"
+                : "");
+  return false;
 }
 
 void ConfigureColmapLogging(const char* program, bool verbose) {

@@ -23,7 +23,23 @@ bool Fail(const std::string& message, std::string* error) {
   return false;
 }
 
+// "1,2,3" (or "").
+std::vector<int> ReadNumbers(const std::string& text) {
+  std::vector<int> numbers;
+  std::istringstream values(text);
+  for (std::string value; std::getline(values, value, ',');)
+    numbers.push_back(std::stoi(value));
+  return numbers;
+}
+
 }  // namespace
+
+double TmrMapperStages::LargestGroupMiB() const {
+  double mib = 0.0;
+  for (const ClusterGroup& group : groups_)
+    mib = std::max(mib, group.memory_mib);
+  return mib;
+}
 
 double TmrMapperStages::MergeMemoryMiB() const {
   const auto it = memory_mib_.find("merge");
@@ -55,28 +71,7 @@ void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
   for (const TmrKernelNode& node : tree_.kernels)
     cluster_mib_.push_back(
         TaskPeakMiB(LoadOfImages(graph, node.cluster_images)));
-  // The groups of clusters a merge stage by parts would take (issue 43,
-  // item 2): each cluster with its halo, at its own merge stage's peak.
-  merge_groups_.clear();
-  if (MergeMemoryMiB() <= budget_.mib) return;
-  std::vector<int> cluster_of(graph.NumImages(), -1);
-  std::vector<double> cost;
-  for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
-    const TmrKernelNode& node = tree_.kernels[k];
-    std::vector<int> images = node.cluster_images;
-    for (const int i : node.cluster_images) cluster_of[i] = k;
-    for (const auto& halo : node.leaf_halos)
-      images.insert(images.end(), halo.begin(), halo.end());
-    cost.push_back(MergePeakMiB(LoadOfImages(graph, images),
-                                o_.refinement.points_per_image,
-                                o_.refinement.max_block_images));
-  }
-  for (const std::vector<int>& group :
-       GroupClusters(cost, LinkClusters(graph, cluster_of), budget_.mib)) {
-    double mib = 0.0;
-    for (const int k : group) mib += cost[k];
-    merge_groups_.push_back(mib);
-  }
+  PlanGroups(graph);
 }
 
 bool TmrMapperStages::ReadPlanMemory(std::string* error) {
@@ -84,6 +79,8 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
   std::ifstream plan(path);
   std::string line;
   memory_mib_.clear();
+  groups_.clear();
+  seam_images_.clear();
   while (std::getline(plan, line)) {
     std::istringstream fields(line);
     std::string id;
@@ -95,7 +92,23 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
                   error);
     }
     fields >> mib;
+    std::string list;  // "name=1,2,..." fields of the merge stage by parts
+    if (id == "seams") {
+      fields >> list;
+      seam_images_ = ReadNumbers(list);
+      continue;
+    }
     memory_mib_[id] = mib;
+    if (id.rfind("merge.", 0) != 0) continue;
+    ClusterGroup group;  // GroupLine
+    group.num_images = images;
+    group.memory_mib = mib;
+    while (fields >> list) {
+      const size_t eq = list.find('=');
+      (list.substr(0, eq) == "kernels" ? group.kernels : group.extra_images) =
+          ReadNumbers(list.substr(eq + 1));
+    }
+    groups_.push_back(std::move(group));
   }
   return true;
 }
@@ -107,7 +120,10 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
   const auto largest = std::max_element(
       tasks.begin(), tasks.end(),
       [](const auto& a, const auto& b) { return a.memory_mib < b.memory_mib; });
-  const double beside = one_process ? correspondences_mib_ : 0.0;
+  // By parts, each group's merge loads its own correspondences after the
+  // tasks.
+  const double beside =
+      one_process && groups_.empty() ? correspondences_mib_ : 0.0;
   if (progress) {
     std::string line = "memory: budget " + GiBText(budget.mib) + " (" +
                        budget.source + "); expected peaks: ";
@@ -119,7 +135,15 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
     }
     if (one_process)
       line += "correspondences of all images " + GiBText(beside) + ", ";
-    progress(line + "merge stage " + GiBText(MergeMemoryMiB()));
+    if (groups_.empty()) {
+      line += "merge stage " + GiBText(MergeMemoryMiB());
+    } else {
+      line += "merge stage by parts (over the budget whole): " +
+              std::to_string(groups_.size()) + " groups of clusters up to " +
+              GiBText(LargestGroupMiB()) + ", their join " +
+              GiBText(MergeMemoryMiB());
+    }
+    progress(line);
   }
   if (largest != tasks.end() && largest->memory_mib + beside > budget.mib) {
     const std::string need =
@@ -148,16 +172,9 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
                   error);
     }
   }
-  const std::string warning = MergeOverBudgetWarning(MergeMemoryMiB(), budget);
-  if (progress && !warning.empty()) {
-    const double largest_group =
-        merge_groups_.empty()
-            ? 0.0
-            : *std::max_element(merge_groups_.begin(), merge_groups_.end());
-    progress(warning + " (by parts: " + std::to_string(merge_groups_.size()) +
-             " groups of clusters, the largest about " +
-             GiBText(largest_group) + ")");
-  }
+  const std::string warning = MergeOverBudgetWarning(
+      std::max(MergeMemoryMiB(), LargestGroupMiB()), budget);
+  if (progress && !warning.empty()) progress(warning);
   return true;
 }
 

@@ -12,10 +12,13 @@
 #include <vector>
 
 #include "controllers/memory_budget.h"
+#include "controllers/task_graph.h"
 #include "controllers/task_workspace.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
+
+class SceneAssembler;
 
 // The steps of tmr_mapper (paper Sec. 5) on its work folder
 // (output_path/.tmr_work), each with its inputs and outputs on disk: the
@@ -30,6 +33,17 @@ namespace tmr {
 class TmrMapperStages {
  public:
   using Progress = std::function<void(const std::string&)>;
+  using Record = std::function<void(const TmrTaskReport&)>;
+
+  // A group of image clusters that a merge stage by parts merges on its
+  // own (docs/distributed.md): its kernels' clusters with their halos, and
+  // the unclustered images with the most verified matches into them.
+  struct ClusterGroup {
+    std::vector<int> kernels;
+    std::vector<int> extra_images;  // tree indices
+    int num_images = 0;             // all of its images
+    double memory_mib = 0.0;        // its merge's expected peak
+  };
 
   explicit TmrMapperStages(const TmrMapperOptions& options);
 
@@ -52,8 +66,16 @@ class TmrMapperStages {
   // Every kernel task, then every leaf task, with its state on disk and its
   // expected memory.
   std::vector<TmrMapperTask> Tasks() const;
-  // The merge stage's expected peak memory (MiB).
+  // The merge stage's expected peak memory (MiB); by parts, the join's.
   double MergeMemoryMiB() const;
+  // The groups of a merge stage by parts (GroupClusters), made when the
+  // whole merge stage is expected to need more than the budget; empty
+  // when it fits.
+  const std::vector<ClusterGroup>& cluster_groups() const { return groups_; }
+  // The largest group's expected peak (0 without groups).
+  double LargestGroupMiB() const;
+  // Whether group g's models are in the work folder.
+  bool GroupMerged(int g) const;
 
   // The memory budget (options.memory_budget, resolved once).
   const MemoryBudget& budget() const { return budget_; }
@@ -86,17 +108,48 @@ class TmrMapperStages {
       int num_threads, TmrTaskReport* row,
       std::vector<std::string>* notes) const;
 
-  // The models the finished tasks made of the images their main model left.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> PartModels() const;
+  // Kernel k's cluster merge (MergeCluster) as a task of a TaskGraph: it
+  // runs once `depends` have finished, if *cache then holds the
+  // correspondences; its notes go to `progress`, its row to `record` (when
+  // it gave a model), its model to *cluster. The callbacks are called from
+  // worker threads.
+  TaskGraph::Task ClusterMergeTask(
+      int k, std::vector<int> depends,
+      const std::shared_ptr<const colmap::DatabaseCache>* cache,
+      const Progress& progress, const Record& record,
+      std::shared_ptr<colmap::Reconstruction>* cluster) const;
+  // The cluster models of `kernels` (their ClusterMergeTask side by side
+  // on num_threads workers).
+  std::vector<std::shared_ptr<colmap::Reconstruction>> MergeClusters(
+      const std::vector<int>& kernels,
+      std::shared_ptr<const colmap::DatabaseCache> cache, int num_threads,
+      const Record& record, const Progress& progress) const;
+
+  // The models the finished tasks made of the images their main model
+  // left (of the tasks of `kernels` only, when given).
+  std::vector<std::shared_ptr<colmap::Reconstruction>> PartModels(
+      const std::vector<int>* kernels = nullptr) const;
 
   // The last stage: scene models from the cluster and part models
   // (SceneAssembler), written to output_path/0, 1, ..., largest first.
   bool AssembleAndWrite(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models,
       std::shared_ptr<const colmap::DatabaseCache> cache, int num_threads,
-      const std::function<void(const TmrTaskReport&)>& record,
-      const Progress& progress, TmrMapperReport* report,
+      const Record& record, const Progress& progress, TmrMapperReport* report,
       std::string* error) const;
+
+  // The merge stage by parts. Group g's merge: the correspondences of its
+  // images only, its cluster merges, SceneAssembler on them (no model
+  // dropped: a small one may join another group's), its models written to
+  // the work folder; reused when they are there already.
+  bool MergeGroup(int g, int num_threads, const Record& record,
+                  const Progress& progress, std::string* error) const;
+  // Then the join: the groups' models placed by the images that several
+  // groups hold (SceneAssembler::Join), written to output_path as
+  // AssembleAndWrite writes them. Every group must have been merged.
+  bool JoinGroups(int num_threads, const Record& record,
+                  const Progress& progress, TmrMapperReport* report,
+                  std::string* error) const;
 
  private:
   struct KernelState {
@@ -111,8 +164,27 @@ class TmrMapperStages {
   // A task's images (tree indices): a kernel task its kernel's; a leaf
   // task its kernel's, then its leaf cluster's and its halo.
   std::vector<int> TaskImages(const TmrMapperTask& task) const;
-  // Fills the expected memory of every step (controllers/memory_budget.h).
+  // Fills the expected memory of every step (controllers/memory_budget.h),
+  // and the cluster groups when the merge stage exceeds the budget.
   void EstimateMemory(const MatchGraph& graph);
+  // The cluster groups (GroupClusters) and their memory, and the join's.
+  void PlanGroups(const MatchGraph& graph);
+  // A group's images (tree indices, sorted).
+  std::vector<int> GroupImages(const ClusterGroup& group) const;
+  // The images of the seams between groups, whose correspondences the join
+  // loads: those several groups hold, and those of verified pairs across
+  // groups.
+  std::vector<int> SeamImages(const MatchGraph& graph) const;
+  // The plan.txt lines of the merge stage by parts, which ReadPlanMemory
+  // reads back: one per group ("merge.G IMAGES 0 MIB kernels=K,...
+  // extra=I,...", extra maybe empty), then "seams N 0 0 I,...".
+  std::string GroupPlanLines() const;
+  // Writes scenes (largest first) to output_path/0, 1, ..., removes the
+  // models of an earlier run beyond them, reports the weak links.
+  bool WriteScenes(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
+      const SceneAssembler& assembler, const Progress& progress,
+      TmrMapperReport* report, std::string* error) const;
   // Reads the expected memory of every step from plan.txt (0 where an
   // older plan has none).
   bool ReadPlanMemory(std::string* error);
@@ -139,9 +211,8 @@ class TmrMapperStages {
   std::unordered_map<std::string, double> memory_mib_;
   double correspondences_mib_ = 0.0;
   std::vector<double> cluster_mib_;
-  // Expected peak (MiB) of each group of clusters that a merge stage by
-  // parts would merge apart; empty when the whole merge fits the budget.
-  std::vector<double> merge_groups_;
+  std::vector<ClusterGroup> groups_;
+  std::vector<int> seam_images_;  // SeamImages, written with the plan
 };
 
 }  // namespace tmr

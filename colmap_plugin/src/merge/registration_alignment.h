@@ -38,10 +38,10 @@ struct RegistrationAlignmentOptions {
 // made after the fact): the images both models register (the halo of
 // neighbouring clusters, tmr/partition/cluster_halo.h) hold a pose in each
 // already; up to max_images with those, the source images that see the most
-// points of the target are registered on those points by absolute pose (COLMAP's P3P
-// LO-RANSAC and pose refinement, the source's intrinsics held), so each
-// holds a pose in both models. Every pair of them proposes the similarity
-// that carries their source poses onto their target poses (rotations
+// points of the target are registered on those points by absolute pose
+// (COLMAP's P3P LO-RANSAC and pose refinement, the source's intrinsics held),
+// so each holds a pose in both models. Every pair of them proposes the
+// similarity that carries their source poses onto their target poses (rotations
 // averaged, scale and translation from the projection centres); the one
 // that most images support, estimated again from those, is kept. An image
 // supports it when the source points it observes, moved into the target,

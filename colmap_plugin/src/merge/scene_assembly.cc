@@ -23,6 +23,14 @@ void HoldImages(std::vector<AssemblyScene>* scenes) {
   }
 }
 
+std::vector<std::shared_ptr<colmap::Reconstruction>> ModelsLargestFirst(
+    std::vector<AssemblyScene>* scenes) {
+  SortBySize(scenes);
+  std::vector<std::shared_ptr<colmap::Reconstruction>> models;
+  for (const AssemblyScene& scene : *scenes) models.push_back(scene.model);
+  return models;
+}
+
 }  // namespace
 
 std::string DescribeFit(const ModelAlignment& a) {
@@ -67,7 +75,8 @@ SceneAssembler::SceneAssembler(
 }
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
+    bool drop_small_models) const {
   Scenes scenes;
   for (const auto& model : models)
     scenes.push_back({model, false, model->NumRegImages(), {}});
@@ -104,24 +113,40 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     CompleteScenes(&scenes, /*keep_unless_grown=*/true);
     RefineLateMerges(&scenes);
   }
+  if (drop_small_models) DropSmallModels(&scenes);
+  return ModelsLargestFirst(&scenes);
+}
+
+std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Join(
+    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
+  Scenes scenes;
+  for (const auto& model : models)
+    scenes.push_back({model, false, model->NumRegImages(), {}});
+  AlignAllScenes(&scenes, /*joining=*/true);
+  std::vector<colmap::Reconstruction*> models_now;
+  for (AssemblyScene& scene : scenes) models_now.push_back(scene.model.get());
+  KeepOneCopyOfEachImage(models_now);
+  DropSmallModels(&scenes);
+  return ModelsLargestFirst(&scenes);
+}
+
+void SceneAssembler::DropSmallModels(Scenes* scenes) const {
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
   const size_t min_size = MinModelSize();
-  SortBySize(&scenes);
+  SortBySize(scenes);
   int dropped = 0, images = 0;
-  while (scenes.size() > 1 && scenes.back().model->NumRegImages() < min_size) {
+  while (scenes->size() > 1 &&
+         scenes->back().model->NumRegImages() < min_size) {
     ++dropped;
-    images += static_cast<int>(scenes.back().model->NumRegImages());
-    scenes.pop_back();  // largest first
+    images += static_cast<int>(scenes->back().model->NumRegImages());
+    scenes->pop_back();  // largest first
   }
   if (dropped > 0) {
     record_({"drop " + std::to_string(dropped) + " models of fewer than " +
                  std::to_string(min_size) + " images (Mapper.min_model_size)",
              images, 0, 0.0, true, "their images stay unregistered"});
   }
-  std::vector<std::shared_ptr<colmap::Reconstruction>> result;
-  for (const AssemblyScene& scene : scenes) result.push_back(scene.model);
-  return result;
 }
 
 size_t SceneAssembler::MinModelSize() const {

@@ -76,8 +76,19 @@ class SceneAssembler {
   // then MergeScenes once more on the refined scenes and RefineLateMerges,
   // and (options.merge.complete_models) CompleteScenes on the refined
   // scenes with RefineLateMerges of the images it added. Returns the scene
-  // models, largest first.
+  // models, largest first; with `drop_small_models`, without the models
+  // below MinModelSize when there are several (as COLMAP's mapper).
   std::vector<std::shared_ptr<colmap::Reconstruction>> Assemble(
+      const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
+      bool drop_small_models = true) const;
+
+  // The join of a merge stage by parts (docs/distributed.md): the models
+  // of the groups, each assembled on its own, placed by AlignAllScenes
+  // without adjustment (the images two groups register hold the seams; the
+  // correspondences need only be those of such images), one copy of each
+  // image kept, the models below MinModelSize dropped when there are
+  // several. Returns the scene models, largest first.
+  std::vector<std::shared_ptr<colmap::Reconstruction>> Join(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
 
   // Every pair of `scenes` (the final models, in output order) that
@@ -106,8 +117,14 @@ class SceneAssembler {
   // models are completed) aligned by Align, in parallel; one similarity
   // averaging of those alignments (AverageSimilarities); each connected
   // part appended into its largest model in the averaged frame, left to
-  // RefineMergedScenes for its one adjustment (scene_averaging.cc).
-  void AlignAllScenes(Scenes* scenes) const;
+  // RefineMergedScenes for its one adjustment (scene_averaging.cc),
+  // adjusted first on its longest tracks. `joining` (Join): the models
+  // aligned on the images they share first (Align's images_first), and
+  // not adjusted.
+  void AlignAllScenes(Scenes* scenes, bool joining = false) const;
+  // With several scenes, those below MinModelSize go, largest first; their
+  // images stay unregistered.
+  void DropSmallModels(Scenes* scenes) const;
   // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
   size_t MinModelSize() const;
 
@@ -155,8 +172,12 @@ class SceneAssembler {
   // (AlignModelsBySharedTracks), and where it refuses, images of the model
   // registered on the scene's points (AlignModelsByRegisteredImages, with
   // options.merge.register_images). On refusal the reason names both.
+  // With `images_first`, the images' rule is tried first: it aligns on the
+  // poses of the images both models hold, which fix the rotation better
+  // than the tracks of a seam.
   ModelAlignment Align(const colmap::Reconstruction& scene,
-                       const colmap::Reconstruction& model) const;
+                       const colmap::Reconstruction& model,
+                       bool images_first = false) const;
 
   // Indices of the scenes that verified pairs link `model` to, the one with
   // the most verified matches first.

@@ -132,7 +132,7 @@ std::vector<TmrTaskReport> LinkRows(
 
 }  // namespace
 
-void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
+void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   SortBySize(scenes);
   const auto start = Clock::now();
   // Models too small to move as one block stay out (as in MergeScenes).
@@ -158,7 +158,8 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
     for (size_t p = 0; p < keys.size(); ++p) {
       pool.AddTask([&, p] {
         const auto pair_start = Clock::now();
-        alignments[p] = Align(*models[keys[p].first], *models[keys[p].second]);
+        alignments[p] =
+            Align(*models[keys[p].first], *models[keys[p].second], joining);
         seconds[p] = SecondsSince(pair_start);
       });
     }
@@ -218,7 +219,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
     // A merged scene is adjusted once on its longest tracks, then fully in
     // RefineMergedScenes: its full adjustment alone, from the averaged
     // placement, left scattered photos off (docs/mapper.md, step 4).
-    if (scene.unrefined) Refine(&scene, /*while_merging=*/true);
+    if (!joining && scene.unrefined) Refine(&scene, /*while_merging=*/true);
     kept.push_back(std::move(scene));
   }
   *scenes = std::move(kept);

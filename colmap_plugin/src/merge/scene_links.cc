@@ -46,20 +46,25 @@ std::vector<int> SceneAssembler::LinkedScenes(
   return order;
 }
 
-ModelAlignment SceneAssembler::Align(
-    const colmap::Reconstruction& scene,
-    const colmap::Reconstruction& model) const {
+ModelAlignment SceneAssembler::Align(const colmap::Reconstruction& scene,
+                                     const colmap::Reconstruction& model,
+                                     bool images_first) const {
   const colmap::CorrespondenceGraph& graph = *cache_->CorrespondenceGraph();
-  ModelAlignmentOptions tracks;
-  tracks.min_shared_tracks = o_.merge.min_shared_tracks;
-  tracks.seed = static_cast<unsigned>(o_.tree.seed);
-  const ModelAlignment by_tracks =
-      AlignModelsBySharedTracks(scene, model, graph, tracks);
-  if (by_tracks.success || o_.merge.register_images == 0) return by_tracks;
   RegistrationAlignmentOptions registration;
   registration.max_images = o_.merge.register_images;
   registration.min_num_inliers = o_.mapper.abs_pose_min_num_inliers;
-  registration.seed = tracks.seed;
+  registration.seed = static_cast<unsigned>(o_.tree.seed);
+  if (images_first && o_.merge.register_images > 0) {
+    const ModelAlignment by_images =
+        AlignModelsByRegisteredImages(scene, model, graph, registration);
+    if (by_images.success) return by_images;
+  }
+  ModelAlignmentOptions tracks;
+  tracks.min_shared_tracks = o_.merge.min_shared_tracks;
+  tracks.seed = registration.seed;
+  const ModelAlignment by_tracks =
+      AlignModelsBySharedTracks(scene, model, graph, tracks);
+  if (by_tracks.success || o_.merge.register_images == 0) return by_tracks;
   ModelAlignment by_images =
       AlignModelsByRegisteredImages(scene, model, graph, registration);
   if (!by_images.success) {

@@ -257,16 +257,31 @@ struct TmrMapperTask {
   double memory_mib = 0.0;
 };
 
+// A group of clusters of a merge stage by parts (docs/distributed.md),
+// merged on its own once the tasks of its clusters have finished.
+struct TmrMergeGroup {
+  std::string id;           // "merge.G"
+  int num_images = 0;       // its clusters', their halos' and its extra images
+  bool ready = false;       // the tasks of its clusters have finished
+  bool merged = false;      // its models are in the work folder
+  double memory_mib = 0.0;  // the expected peak of its merge
+};
+
 // The plan of a staged run: its tasks, and the merge stage after them.
 struct TmrMapperPlan {
   std::vector<TmrMapperTask> tasks;
   int num_images = 0;
-  double merge_memory_mib = 0.0;  // the merge stage's expected peak
+  // The merge stage's expected peak; by parts, its join's.
+  double merge_memory_mib = 0.0;
+  // The merge stage by parts: its groups, merged before the join; empty
+  // when the merge stage fits the memory budget whole.
+  std::vector<TmrMergeGroup> merge_groups;
 };
 
 // Stage 1: the TMR-tree (tree.json), the task plan (plan.txt: per line a
-// task's id, images, base images and expected memory in MiB, then "merge",
-// all images, 0 and the merge stage's memory) and the work folder
+// task's id, images, base images and expected memory in MiB; by parts, a
+// line per group of the merge stage and one of the seams' images; then
+// "merge", all images, 0 and the merge stage's memory) and the work folder
 // (output_path/.tmr_work); a plan made again with the same database and
 // options keeps the finished tasks. False when a task would not fit
 // options.memory_budget.
@@ -286,9 +301,20 @@ bool RunTmrMapperTask(const TmrMapperOptions& options,
                       std::string* error);
 
 // Stage 3: cluster merges, scene models and output as RunTmrMapper writes
-// them; every task must have finished.
+// them (by parts: the groups not merged yet, then their join); every task
+// must have finished.
 bool MergeTmrMapper(
     const TmrMapperOptions& options, TmrMapperReport* report,
+    std::string* error,
+    const std::function<void(const std::string&)>& progress = nullptr);
+
+// Stage 3 by parts, for a scheduler: group `group_id` ("merge.G") of the
+// merge stage alone, its models into the work folder (reused when there
+// already); MergeTmrMapper then merges the groups not merged yet and joins
+// them. False when the plan has no such group or a task of its clusters
+// has not finished.
+bool MergeTmrMapperGroup(
+    const TmrMapperOptions& options, const std::string& group_id,
     std::string* error,
     const std::function<void(const std::string&)>& progress = nullptr);
 

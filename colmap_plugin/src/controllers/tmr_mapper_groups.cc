@@ -1,0 +1,271 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// TmrMapperStages' merge stage by parts (docs/distributed.md): groups of
+// image clusters that fit the memory budget (GroupClusters), each merged on
+// its own correspondences, then joined by the images several groups hold.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "controllers/memory_budget.h"
+#include "controllers/task_graph.h"
+#include "controllers/tmr_mapper_stages.h"
+#include "io/task_database.h"
+#include "merge/scene_assembly.h"
+#include "sfm/reconstruction_task.h"
+#include "tmr/io/atomic_file.h"
+#include "tmr/partition/merge_groups.h"
+#include "tmr/util/process.h"
+
+namespace tmr {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+bool Fail(const std::string& message, std::string* error) {
+  *error = message;
+  return false;
+}
+
+std::string JoinNumbers(const std::vector<int>& values) {
+  std::string text;
+  for (const int v : values)
+    text += (text.empty() ? "" : ",") + std::to_string(v);
+  return text;
+}
+
+// What identifies group g's result in the work folder: its clusters and
+// extra images.
+std::string GroupContent(const TmrMapperStages::ClusterGroup& group) {
+  return "kernels=" + JoinNumbers(group.kernels) +
+         " extra=" + JoinNumbers(group.extra_images);
+}
+
+}  // namespace
+
+void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
+  groups_.clear();
+  if (MergeMemoryMiB() <= budget_.mib) return;
+  const int n = graph.NumImages();
+  std::vector<int> cluster_of(n, -1);
+  std::vector<double> cost;
+  for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
+    const TmrKernelNode& node = tree_.kernels[k];
+    for (const int i : node.cluster_images) cluster_of[i] = k;
+    cost.push_back(MergePeakMiB(
+        LoadOfImages(graph, GroupImages({{k}, {}, 0, 0.0})),
+        o_.refinement.points_per_image, o_.refinement.max_block_images));
+  }
+  const std::vector<std::vector<int>> grouped =
+      GroupClusters(cost, LinkClusters(graph, cluster_of), budget_.mib);
+  if (grouped.size() < 2) return;  // one group is the whole merge stage
+  std::vector<int> group_of_kernel(tree_.kernels.size());
+  for (int g = 0; g < static_cast<int>(grouped.size()); ++g) {
+    groups_.push_back({grouped[g], {}, 0, 0.0});
+    for (const int k : grouped[g]) group_of_kernel[k] = g;
+  }
+  // The images of no group's clusters or halos (unclustered) go to the
+  // group their verified matches link them to most; group 0 when none.
+  std::vector<bool> held(n, false);
+  for (const ClusterGroup& group : groups_)
+    for (const int i : GroupImages(group)) held[i] = true;
+  std::vector<std::map<int, int64_t>> matches_into(n);
+  for (const MatchGraphPair& pair : graph.pairs) {
+    for (const auto& [a, b] : {std::pair(pair.image1, pair.image2),
+                               std::pair(pair.image2, pair.image1)}) {
+      if (!held[a] && cluster_of[b] >= 0)
+        matches_into[a][group_of_kernel[cluster_of[b]]] += pair.num_inliers;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (held[i]) continue;
+    int best = 0;
+    int64_t most = 0;
+    for (const auto& [g, count] : matches_into[i]) {
+      if (count > most) {
+        best = g;
+        most = count;
+      }
+    }
+    groups_[best].extra_images.push_back(i);
+  }
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    ClusterGroup& group = groups_[g];
+    const std::vector<int> images = GroupImages(group);
+    group.num_images = static_cast<int>(images.size());
+    group.memory_mib = MergePeakMiB(LoadOfImages(graph, images),
+                                    o_.refinement.points_per_image,
+                                    o_.refinement.max_block_images);
+    memory_mib_["merge." + std::to_string(g)] = group.memory_mib;
+  }
+  std::vector<int> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  seam_images_ = SeamImages(graph);
+  memory_mib_["merge"] =
+      JoinPeakMiB(LoadOfImages(graph, all), LoadOfImages(graph, seam_images_));
+}
+
+std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
+  std::vector<int> images = group.extra_images;
+  for (const int k : group.kernels) {
+    const TmrKernelNode& node = tree_.kernels.at(k);
+    images.insert(images.end(), node.cluster_images.begin(),
+                  node.cluster_images.end());
+    for (const auto& halo : node.leaf_halos)
+      images.insert(images.end(), halo.begin(), halo.end());
+  }
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end()), images.end());
+  return images;
+}
+
+std::vector<int> TmrMapperStages::SeamImages(const MatchGraph& graph) const {
+  // The groups that hold each image.
+  std::vector<std::vector<int>> groups_of(graph.NumImages());
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g)
+    for (const int i : GroupImages(groups_[g])) groups_of.at(i).push_back(g);
+  std::vector<bool> seam(graph.NumImages(), false);
+  for (int i = 0; i < graph.NumImages(); ++i) seam[i] = groups_of[i].size() > 1;
+  for (const MatchGraphPair& pair : graph.pairs) {
+    const std::vector<int>& a = groups_of[pair.image1];
+    const std::vector<int>& b = groups_of[pair.image2];
+    if (std::find_first_of(a.begin(), a.end(), b.begin(), b.end()) == a.end())
+      seam[pair.image1] = seam[pair.image2] = true;
+  }
+  std::vector<int> seams;
+  for (int i = 0; i < graph.NumImages(); ++i)
+    if (seam[i]) seams.push_back(i);
+  return seams;
+}
+
+std::string TmrMapperStages::GroupPlanLines() const {
+  std::string lines;
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const ClusterGroup& group = groups_[g];
+    lines += "merge." + std::to_string(g) + " " +
+             std::to_string(group.num_images) + " 0 " +
+             std::to_string(std::lround(group.memory_mib)) + " " +
+             GroupContent(group) + "\n";
+  }
+  if (!groups_.empty()) {
+    lines += "seams " + std::to_string(seam_images_.size()) + " 0 0 " +
+             JoinNumbers(seam_images_) + "\n";
+  }
+  return lines;
+}
+
+bool TmrMapperStages::GroupMerged(int g) const {
+  std::ifstream in(work_.GroupModels(g) + ".result");
+  std::string content;
+  int num_models = -1;
+  if (!std::getline(in, content) || content != GroupContent(groups_.at(g)) ||
+      !(in >> num_models))
+    return false;
+  for (int m = 0; m < num_models; ++m) {
+    if (!fs::is_directory(fs::path(work_.GroupModels(g)) / std::to_string(m)))
+      return false;
+  }
+  return true;
+}
+
+bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
+                                 const Progress& progress,
+                                 std::string* error) const {
+  const std::string name = "group " + std::to_string(g);
+  if (GroupMerged(g)) {
+    if (progress) progress(name + ": merged by an earlier run");
+    return true;
+  }
+  auto group_record = [&](TmrTaskReport row) {
+    row.name = name + ": " + row.name;
+    record(row);
+  };
+  const auto start = Clock::now();
+  const ClusterGroup& group = groups_.at(g);
+  const std::vector<int> images = GroupImages(group);
+  const auto cache = LoadTaskDatabaseCache(
+      o_.database_path, ImageIdsOf(tree_, images), work_.GroupDatabase(g),
+      o_.mapper.min_num_matches, o_.mapper.ignore_watermarks, error);
+  if (!cache) return false;
+  const int n = static_cast<int>(images.size());
+  group_record(
+      TmrTaskReport{"load correspondences", n, n, SecondsSince(start), true,
+                    std::to_string(group.kernels.size()) + " clusters"});
+  std::vector<std::shared_ptr<colmap::Reconstruction>> models =
+      MergeClusters(group.kernels, cache, num_threads, group_record, progress);
+  for (auto& part : PartModels(&group.kernels)) models.push_back(part);
+  std::vector<std::string> names;
+  for (const int i : images) names.push_back(tree_.image_names.at(i));
+  const SceneAssembler assembler(o_, cache, work_.GroupDatabase(g), names,
+                                 num_threads, group_record);
+  const auto scenes = assembler.Assemble(models, /*drop_small_models=*/false);
+  const fs::path folder(work_.GroupModels(g));
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  fs::create_directories(folder, ec);
+  for (size_t m = 0; m < scenes.size(); ++m) {
+    const std::string path = (folder / std::to_string(m)).string();
+    if (!WriteModelAtomically(*scenes[m], path))
+      return Fail("cannot write model '" + path + "'", error);
+  }
+  if (!WriteFileAtomically(
+          work_.GroupModels(g) + ".result",
+          GroupContent(group) + "\n" + std::to_string(scenes.size()) + "\n"))
+    return Fail("cannot write in '" + work_.folder().string() + "'", error);
+  fs::remove(work_.GroupDatabase(g), ec);
+  size_t registered = 0;
+  for (const auto& scene : scenes) registered += scene->NumRegImages();
+  group_record(TmrTaskReport{"merged", n, static_cast<int>(registered),
+                             SecondsSince(start), true,
+                             std::to_string(scenes.size()) + " models"});
+  return true;
+}
+
+bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
+                                 const Progress& progress,
+                                 TmrMapperReport* report,
+                                 std::string* error) const {
+  const auto start = Clock::now();
+  std::vector<std::shared_ptr<colmap::Reconstruction>> models;
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    if (!GroupMerged(g)) {
+      return Fail("group " + std::to_string(g) +
+                      " of the merge stage has not been merged",
+                  error);
+    }
+    for (int m = 0;; ++m) {
+      const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
+      if (!fs::is_directory(path)) break;
+      models.push_back(std::make_shared<colmap::Reconstruction>());
+      models.back()->ReadBinary(path.string());
+    }
+  }
+  // The seams' correspondences: those among the images several groups
+  // hold, or that verified pairs link across groups.
+  const std::vector<int>& seams = seam_images_;
+  std::shared_ptr<const colmap::DatabaseCache> cache =
+      std::make_shared<colmap::DatabaseCache>();
+  if (seams.size() > 1) {
+    cache = LoadTaskDatabaseCache(
+        o_.database_path, ImageIdsOf(tree_, seams), work_.JoinDatabase(),
+        o_.mapper.min_num_matches, o_.mapper.ignore_watermarks, error);
+    if (!cache) return false;
+  }
+  const int n = static_cast<int>(tree_.image_ids.size());
+  record(
+      {"join: load the models of " + std::to_string(groups_.size()) + " groups",
+       n, 0, SecondsSince(start), true,
+       std::to_string(models.size()) + " models, " +
+           std::to_string(seams.size()) + " images in several groups"});
+  const SceneAssembler assembler(o_, cache, work_.JoinDatabase(),
+                                 tree_.image_names, num_threads, record);
+  return WriteScenes(assembler.Join(models), assembler, progress, report,
+                     error);
+}
+
+}  // namespace tmr
