@@ -204,6 +204,8 @@ int main(int argc, char** argv) {
   }
   if (stage == "run_task" && task.empty())
     return Error("run_task needs --task", 2);
+  if (stage != "merge" && !group.empty())
+    return Error("--group is an option of the merge stage", 2);
   std::string error;
   if (!o.Check(&error)) return Error(error, 2);
   tmr::ConfigureColmapLogging(argv[0], verbose);

@@ -69,9 +69,9 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   return held + std::max(longest, block);
 }
 
-double JoinPeakMiB(const MemoryLoad& scene, const MemoryLoad& seams) {
+double JoinPeakMiB(const MemoryLoad& models, const MemoryLoad& seams) {
   return kProcessMiB + CorrespondencesMiB(seams) +
-         kModelsPerMatchedKeypoint * scene.matched_keypoints / kMiB;
+         kModelsPerMatchedKeypoint * models.matched_keypoints / kMiB;
 }
 
 MemoryBudget ResolveMemoryBudget(double budget_gib) {
@@ -88,7 +88,7 @@ std::string MergeOverBudgetWarning(double merge_mib,
   if (merge_mib <= budget.mib) return "";
   return "warning: the merge stage is expected to need " + GiBText(merge_mib) +
          ", above the memory budget of " + GiBText(budget.mib) +
-         "; it does not yet run by parts";
+         "; give a budget it fits in, or run it where it fits";
 }
 
 std::string GiBText(double mib) {

@@ -38,9 +38,9 @@ double CorrespondencesMiB(const MemoryLoad& scene);
 double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
                     int max_block_images);
 // The join of a merge stage by parts (docs/distributed.md): the models of
-// every group, and the correspondences of the `seams`, the images that
-// several groups hold.
-double JoinPeakMiB(const MemoryLoad& scene, const MemoryLoad& seams);
+// every group (`models`: the groups' loads summed, an image in several
+// groups counted in each), and the correspondences of the `seams`.
+double JoinPeakMiB(const MemoryLoad& models, const MemoryLoad& seams);
 
 // The memory every step must fit (--Tmr.memory_budget).
 struct MemoryBudget {

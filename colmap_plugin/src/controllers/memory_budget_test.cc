@@ -53,7 +53,8 @@ TEST(MemoryBudget, TheMergeWarnsOnlyAboveTheBudget) {
   EXPECT_EQ(MergeOverBudgetWarning(2000.0, budget), "");
   EXPECT_EQ(MergeOverBudgetWarning(3072.0, budget),
             "warning: the merge stage is expected to need 3.00 GiB, above "
-            "the memory budget of 2.00 GiB; it does not yet run by parts");
+            "the memory budget of 2.00 GiB; give a budget it fits in, or run "
+            "it where it fits");
   EXPECT_EQ(GiBText(1280.0), "1.25 GiB");
 }
 

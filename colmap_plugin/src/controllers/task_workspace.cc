@@ -57,7 +57,7 @@ std::string RunFingerprint(const TmrMapperOptions& options,
   std::ostringstream id;
   id << "database " << std::hex << DatabaseContentHash(options.database_path)
      << "\n"
-     << table.Values(/*tasks_only=*/true) << tree_json;
+     << table.Values(OptionTable::Rows::kTasks) << tree_json;
   return id.str();
 }
 

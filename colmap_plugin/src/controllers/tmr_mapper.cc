@@ -16,6 +16,7 @@
 #include "controllers/memory_budget.h"
 #include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_report.h"
+#include "controllers/tmr_mapper_run.h"
 #include "controllers/tmr_mapper_stages.h"
 #include "tmr/io/atomic_file.h"
 #include "tmr/util/process.h"
@@ -25,51 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-// Checks the options and creates output_path; copies min_num_matches into
-// the match-graph options.
-bool Prepare(const TmrMapperOptions& options, TmrMapperOptions* effective,
-             std::string* error) {
-  if (!options.Check(error)) return false;
-  if (!options.image_path.empty() && !fs::is_directory(options.image_path)) {
-    *error = "image_path '" + options.image_path + "' is not a folder";
-    return false;
-  }
-  std::error_code ec;
-  fs::create_directories(options.output_path, ec);
-  if (ec) {
-    *error = "cannot create output_path '" + options.output_path +
-             "': " + ec.message();
-    return false;
-  }
-  *effective = options;
-  effective->match_graph.min_num_matches = options.mapper.min_num_matches;
-  return true;
-}
-
-int NumThreads(const TmrMapperOptions& options) {
-  return options.num_threads > 0
-             ? options.num_threads
-             : static_cast<int>(
-                   std::max(1u, std::thread::hardware_concurrency()));
-}
-
-// report.json, and the work folder removed unless keep_work. With
-// `timeline` (the one-process run, whose rows carry the task graph's
-// timing), the timeline is summarised first.
-void Finish(const TmrMapperOptions& o, const TmrMapperStages& stages,
-            Clock::time_point start, bool timeline,
-            const std::function<void(const std::string&)>& progress,
-            TmrMapperReport* report) {
-  report->total_seconds = SecondsSince(start);
-  if (timeline) {
-    SummarizeTimeline(NumThreads(o), report);
-    if (progress) progress(DescribeTimeline(*report));
-  }
-  WriteFileAtomically((fs::path(o.output_path) / "report.json").string(),
-                      ReportJson(*report));
-  if (!o.keep_work) fs::remove_all(stages.work().folder());
-}
 
 // The in-process run: the stages of TmrMapperStages on one task graph,
 // with progress lines and an ETA.
@@ -81,7 +37,7 @@ class TmrMapperRun {
         report_(report),
         progress_(progress),
         stages_(options),
-        threads_(NumThreads(options)) {}
+        threads_(TmrMapperThreads(options)) {}
 
   bool Run(std::string* error) {
     start_ = Clock::now();
@@ -103,7 +59,7 @@ class TmrMapperRun {
                                     record, progress, report_, error))
         return false;
     }
-    Finish(o_, stages_, start_, /*timeline=*/true, progress_, report_);
+    FinishTmrMapper(o_, stages_, start_, /*timeline=*/true, progress_, report_);
     return true;
   }
 
@@ -283,184 +239,16 @@ class TmrMapperRun {
   double total_weight_ = 0.0, done_weight_ = 0.0;
 };
 
-// The staged plan of `stages`: its tasks, the groups of a merge stage by
-// parts, with their state on disk.
-TmrMapperPlan PlanOf(const TmrMapperStages& stages) {
-  TmrMapperPlan plan{stages.Tasks(),
-                     static_cast<int>(stages.tree().image_ids.size()),
-                     stages.MergeMemoryMiB(),
-                     {}};
-  const auto& groups = stages.cluster_groups();
-  for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
-    TmrMergeGroup group{"merge." + std::to_string(g), groups[g].num_images,
-                        true, stages.GroupMerged(g), groups[g].memory_mib};
-    for (const TmrMapperTask& task : plan.tasks) {
-      if (!task.finished && std::count(groups[g].kernels.begin(),
-                                       groups[g].kernels.end(), task.kernel))
-        group.ready = false;
-    }
-    plan.merge_groups.push_back(group);
-  }
-  return plan;
-}
-
 }  // namespace
 
 bool RunTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
                   std::string* error,
                   const std::function<void(const std::string&)>& progress) {
   TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
+  if (!PrepareTmrMapper(options, &effective, error)) return false;
   *report = TmrMapperReport();
   TmrMapperRun run(effective, report, progress);
   return run.Run(error);
-}
-
-bool PlanTmrMapper(const TmrMapperOptions& options, TmrMapperPlan* plan,
-                   std::string* error,
-                   const std::function<void(const std::string&)>& progress) {
-  TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
-  TmrMapperStages stages(effective);
-  TmrMapperReport report;
-  if (!stages.Plan(&report, /*one_process=*/false, progress, error))
-    return false;
-  *plan = PlanOf(stages);
-  return true;
-}
-
-bool ReadTmrMapperPlan(const TmrMapperOptions& options, TmrMapperPlan* plan,
-                       std::string* error) {
-  TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
-  TmrMapperStages stages(effective);
-  if (!stages.Load(error)) return false;
-  *plan = PlanOf(stages);
-  return true;
-}
-
-bool RunTmrMapperTask(const TmrMapperOptions& options,
-                      const std::string& task_id, TmrTaskReport* report,
-                      std::string* error) {
-  TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
-  TmrMapperStages stages(effective);
-  if (!stages.Load(error)) return false;
-  for (const TmrMapperTask& task : stages.Tasks()) {
-    if (task.id == task_id)
-      return stages.RunTask(task, NumThreads(effective), report, error);
-  }
-  *error = "the plan has no task '" + task_id + "'";
-  return false;
-}
-
-bool MergeTmrMapper(const TmrMapperOptions& options, TmrMapperReport* report,
-                    std::string* error,
-                    const std::function<void(const std::string&)>& progress) {
-  const auto start = Clock::now();
-  TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
-  TmrMapperStages stages(effective);
-  if (!stages.Load(error)) return false;
-  *report = TmrMapperReport();
-  report->num_images = static_cast<int>(stages.tree().image_ids.size());
-  std::vector<std::string> unfinished;
-  for (const TmrMapperTask& task : stages.Tasks()) {
-    if (const auto row = stages.FinishedTaskRow(task)) {
-      report->tasks.push_back(*row);
-    } else {
-      unfinished.push_back(task.id);
-    }
-  }
-  if (!unfinished.empty()) {
-    *error = std::to_string(unfinished.size()) + " tasks have not finished (" +
-             unfinished.front() + (unfinished.size() > 1 ? ", ..." : "") +
-             "); run them first (tmr_mapper run_task)";
-    return false;
-  }
-  const MemoryBudget& budget = stages.budget();
-  if (progress) {
-    const size_t num_groups = stages.cluster_groups().size();
-    progress("memory: budget " + GiBText(budget.mib) + " (" + budget.source +
-             "); the merge stage is expected to need " +
-             (num_groups == 0
-                  ? GiBText(stages.MergeMemoryMiB())
-                  : "up to " + GiBText(stages.LargestGroupMiB()) + " in " +
-                        std::to_string(num_groups) +
-                        " groups of clusters merged apart, " +
-                        GiBText(stages.MergeMemoryMiB()) + " to join them"));
-    const std::string warning = MergeOverBudgetWarning(
-        std::max(stages.MergeMemoryMiB(), stages.LargestGroupMiB()), budget);
-    if (!warning.empty()) progress(warning);
-  }
-  std::mutex mutex;
-  auto note = [&](const std::string& line) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (progress) progress(line);
-  };
-  auto record = [&](TmrTaskReport row) {
-    std::lock_guard<std::mutex> lock(mutex);
-    const ProcessMemory memory = ReadProcessMemory();
-    row.rss_mib = memory.rss_mib;
-    row.peak_mib = memory.peak_mib;
-    report->tasks.push_back(row);
-    if (progress) progress(row.name + ": " + row.message);
-  };
-  const int threads = NumThreads(effective);
-  const int num_groups = static_cast<int>(stages.cluster_groups().size());
-  if (num_groups > 0) {
-    // By parts: each group within the budget, one after the other, then
-    // the join.
-    for (int g = 0; g < num_groups; ++g)
-      if (!stages.MergeGroup(g, threads, record, note, error)) return false;
-    if (!stages.JoinGroups(threads, record, note, report, error)) return false;
-  } else {
-    const auto cache = stages.LoadCache(error);
-    if (!cache) return false;
-    std::vector<int> kernels(stages.tree().kernels.size());
-    std::iota(kernels.begin(), kernels.end(), 0);
-    if (!stages.AssembleAndWrite(
-            stages.MergeClusters(kernels, cache, threads, record, note), cache,
-            threads, record, progress, report, error))
-      return false;
-  }
-  Finish(effective, stages, start, /*timeline=*/false, progress, report);
-  return true;
-}
-
-bool MergeTmrMapperGroup(
-    const TmrMapperOptions& options, const std::string& group_id,
-    std::string* error,
-    const std::function<void(const std::string&)>& progress) {
-  TmrMapperOptions effective;
-  if (!Prepare(options, &effective, error)) return false;
-  TmrMapperStages stages(effective);
-  if (!stages.Load(error)) return false;
-  const TmrMapperPlan plan = PlanOf(stages);
-  for (int g = 0; g < static_cast<int>(plan.merge_groups.size()); ++g) {
-    if (plan.merge_groups[g].id != group_id) continue;
-    if (!plan.merge_groups[g].ready) {
-      *error = group_id +
-               " waits for tasks of its clusters; run them first (tmr_mapper "
-               "run_task)";
-      return false;
-    }
-    std::mutex mutex;
-    auto note = [&](const std::string& line) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (progress) progress(line);
-    };
-    auto record = [&](const TmrTaskReport& row) {
-      note(row.name + ": " + row.message);
-    };
-    return stages.MergeGroup(g, NumThreads(effective), record, note, error);
-  }
-  *error = "the plan has no merge group '" + group_id + "'" +
-           (plan.merge_groups.empty()
-                ? " (its merge stage fits the memory budget whole: tmr_mapper "
-                  "merge)"
-                : "");
-  return false;
 }
 
 void ConfigureColmapLogging(const char* program, bool verbose) {

@@ -13,12 +13,14 @@
 
 #include "controllers/memory_budget.h"
 #include "controllers/task_graph.h"
+#include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
 #include "io/task_database.h"
 #include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"
 #include "tmr/io/atomic_file.h"
 #include "tmr/partition/merge_groups.h"
+#include "tmr/util/option_table.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -27,16 +29,20 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-bool Fail(const std::string& message, std::string* error) {
-  *error = message;
-  return false;
-}
-
 std::string JoinNumbers(const std::vector<int>& values) {
   std::string text;
   for (const int v : values)
     text += (text.empty() ? "" : ",") + std::to_string(v);
   return text;
+}
+
+// "1,2,3" (or "").
+std::vector<int> ReadNumbers(const std::string& text) {
+  std::vector<int> numbers;
+  std::istringstream values(text);
+  for (std::string value; std::getline(values, value, ',');)
+    numbers.push_back(std::stoi(value));
+  return numbers;
 }
 
 // What identifies group g's result in the work folder: its clusters and
@@ -52,17 +58,22 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   groups_.clear();
   if (MergeMemoryMiB() <= budget_.mib) return;
   const int n = graph.NumImages();
+  // A group's clusters share their halos and one process: its peak is
+  // that of its images together.
+  const auto group_cost = [&](const std::vector<int>& kernels) {
+    return MergePeakMiB(LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0})),
+                        o_.refinement.points_per_image,
+                        o_.refinement.max_block_images);
+  };
   std::vector<int> cluster_of(n, -1);
   std::vector<double> cost;
   for (int k = 0; k < static_cast<int>(tree_.kernels.size()); ++k) {
     const TmrKernelNode& node = tree_.kernels[k];
     for (const int i : node.cluster_images) cluster_of[i] = k;
-    cost.push_back(MergePeakMiB(
-        LoadOfImages(graph, GroupImages({{k}, {}, 0, 0.0})),
-        o_.refinement.points_per_image, o_.refinement.max_block_images));
+    cost.push_back(group_cost({k}));
   }
-  const std::vector<std::vector<int>> grouped =
-      GroupClusters(cost, LinkClusters(graph, cluster_of), budget_.mib);
+  const std::vector<std::vector<int>> grouped = GroupClusters(
+      cost, LinkClusters(graph, cluster_of), budget_.mib, group_cost);
   if (grouped.size() < 2) return;  // one group is the whole merge stage
   std::vector<int> group_of_kernel(tree_.kernels.size());
   for (int g = 0; g < static_cast<int>(grouped.size()); ++g) {
@@ -94,20 +105,21 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
     }
     groups_[best].extra_images.push_back(i);
   }
+  MemoryLoad models;  // the join holds every group's models
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     ClusterGroup& group = groups_[g];
     const std::vector<int> images = GroupImages(group);
+    const MemoryLoad load = LoadOfImages(graph, images);
     group.num_images = static_cast<int>(images.size());
-    group.memory_mib = MergePeakMiB(LoadOfImages(graph, images),
-                                    o_.refinement.points_per_image,
+    group.memory_mib = MergePeakMiB(load, o_.refinement.points_per_image,
                                     o_.refinement.max_block_images);
     memory_mib_["merge." + std::to_string(g)] = group.memory_mib;
+    models.images += load.images;
+    models.keypoints += load.keypoints;
+    models.matched_keypoints += load.matched_keypoints;
   }
-  std::vector<int> all(n);
-  std::iota(all.begin(), all.end(), 0);
   seam_images_ = SeamImages(graph);
-  memory_mib_["merge"] =
-      JoinPeakMiB(LoadOfImages(graph, all), LoadOfImages(graph, seam_images_));
+  memory_mib_["merge"] = JoinPeakMiB(models, LoadOfImages(graph, seam_images_));
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
@@ -159,12 +171,73 @@ std::string TmrMapperStages::GroupPlanLines() const {
   return lines;
 }
 
+bool TmrMapperStages::ReadGroupPlanLine(const std::string& id, int images,
+                                        double mib, std::istringstream* rest) {
+  std::string list;  // "name=1,2,..." fields
+  if (id == "seams") {
+    *rest >> list;
+    seam_images_ = ReadNumbers(list);
+    return true;
+  }
+  if (id.rfind("merge.", 0) != 0) return false;
+  if (id != "merge." + std::to_string(groups_.size()))
+    throw std::invalid_argument("group " + id + " out of order");
+  ClusterGroup group;
+  group.num_images = images;
+  group.memory_mib = mib;
+  while (*rest >> list) {
+    const size_t eq = list.find('=');
+    (list.substr(0, eq) == "kernels" ? group.kernels : group.extra_images) =
+        ReadNumbers(list.substr(eq + 1));
+  }
+  groups_.push_back(std::move(group));
+  memory_mib_[id] = mib;
+  return true;
+}
+
+std::string TmrMapperStages::GroupRecord(int g) const {
+  const ClusterGroup& group = groups_.at(g);
+  TmrMapperOptions options = o_;
+  OptionTable table;
+  options.AddTo(&table);
+  std::string results;
+  for (const TmrMapperTask& task : PlannedTasks()) {
+    if (std::count(group.kernels.begin(), group.kernels.end(), task.kernel))
+      results += ReadFileToString(Model(task) + ".result");
+  }
+  std::ostringstream record;
+  record << GroupContent(group) << "\ntask results " << std::hex
+         << std::hash<std::string>()(results) << "\n"
+         << table.Values(OptionTable::Rows::kResults);
+  return record.str();
+}
+
+bool TmrMapperStages::GroupsFitTheTree() const {
+  const int num_images = static_cast<int>(tree_.image_ids.size());
+  std::vector<int> times_grouped(tree_.kernels.size(), 0);
+  auto in_range = [](const std::vector<int>& values, int size) {
+    return std::all_of(values.begin(), values.end(),
+                       [size](int v) { return v >= 0 && v < size; });
+  };
+  for (const ClusterGroup& group : groups_) {
+    if (!in_range(group.kernels, static_cast<int>(times_grouped.size())) ||
+        !in_range(group.extra_images, num_images))
+      return false;
+    for (const int k : group.kernels) ++times_grouped[k];
+  }
+  return groups_.empty()
+             ? seam_images_.empty()
+             : in_range(seam_images_, num_images) &&
+                   std::all_of(times_grouped.begin(), times_grouped.end(),
+                               [](int t) { return t == 1; });
+}
+
 bool TmrMapperStages::GroupMerged(int g) const {
-  std::ifstream in(work_.GroupModels(g) + ".result");
-  std::string content;
+  const std::string text = ReadFileToString(work_.GroupModels(g) + ".result");
+  const std::string record = GroupRecord(g);
   int num_models = -1;
-  if (!std::getline(in, content) || content != GroupContent(groups_.at(g)) ||
-      !(in >> num_models))
+  if (text.rfind(record, 0) != 0 ||
+      !(std::istringstream(text.substr(record.size())) >> num_models))
     return false;
   for (int m = 0; m < num_models; ++m) {
     if (!fs::is_directory(fs::path(work_.GroupModels(g)) / std::to_string(m)))
@@ -181,12 +254,17 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
     if (progress) progress(name + ": merged by an earlier run");
     return true;
   }
+  const ClusterGroup& group = groups_.at(g);
+  for (const TmrMapperTask& task : Tasks()) {
+    if (!task.finished &&
+        std::count(group.kernels.begin(), group.kernels.end(), task.kernel))
+      return Fail("task " + task.id + " of the group has not finished", error);
+  }
   auto group_record = [&](TmrTaskReport row) {
     row.name = name + ": " + row.name;
     record(row);
   };
   const auto start = Clock::now();
-  const ClusterGroup& group = groups_.at(g);
   const std::vector<int> images = GroupImages(group);
   const auto cache = LoadTaskDatabaseCache(
       o_.database_path, ImageIdsOf(tree_, images), work_.GroupDatabase(g),
@@ -206,6 +284,7 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
   const auto scenes = assembler.Assemble(models, /*drop_small_models=*/false);
   const fs::path folder(work_.GroupModels(g));
   std::error_code ec;
+  fs::remove(work_.GroupModels(g) + ".result", ec);
   fs::remove_all(folder, ec);
   fs::create_directories(folder, ec);
   for (size_t m = 0; m < scenes.size(); ++m) {
@@ -215,7 +294,7 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
   }
   if (!WriteFileAtomically(
           work_.GroupModels(g) + ".result",
-          GroupContent(group) + "\n" + std::to_string(scenes.size()) + "\n"))
+          GroupRecord(g) + std::to_string(scenes.size()) + " models\n"))
     return Fail("cannot write in '" + work_.folder().string() + "'", error);
   fs::remove(work_.GroupDatabase(g), ec);
   size_t registered = 0;
@@ -264,8 +343,8 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
            std::to_string(seams.size()) + " images in several groups"});
   const SceneAssembler assembler(o_, cache, work_.JoinDatabase(),
                                  tree_.image_names, num_threads, record);
-  return WriteScenes(assembler.Join(models), assembler, progress, report,
-                     error);
+  return WriteScenes(assembler.Join(std::move(models)), assembler, progress,
+                     report, error);
 }
 
 }  // namespace tmr

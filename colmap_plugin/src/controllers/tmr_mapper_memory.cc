@@ -18,20 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool Fail(const std::string& message, std::string* error) {
-  *error = message;
-  return false;
-}
-
-// "1,2,3" (or "").
-std::vector<int> ReadNumbers(const std::string& text) {
-  std::vector<int> numbers;
-  std::istringstream values(text);
-  for (std::string value; std::getline(values, value, ',');)
-    numbers.push_back(std::stoi(value));
-  return numbers;
-}
-
 }  // namespace
 
 double TmrMapperStages::LargestGroupMiB() const {
@@ -57,7 +43,8 @@ std::vector<int> TmrMapperStages::TaskImages(const TmrMapperTask& task) const {
   return images;
 }
 
-void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
+void TmrMapperStages::EstimateMemory(const MatchGraph& graph,
+                                     bool one_process) {
   memory_mib_.clear();
   for (const TmrMapperTask& task : PlannedTasks())
     memory_mib_[task.id] = TaskPeakMiB(LoadOfImages(graph, TaskImages(task)));
@@ -71,7 +58,9 @@ void TmrMapperStages::EstimateMemory(const MatchGraph& graph) {
   for (const TmrKernelNode& node : tree_.kernels)
     cluster_mib_.push_back(
         TaskPeakMiB(LoadOfImages(graph, node.cluster_images)));
-  PlanGroups(graph);
+  // A staged plan made with the default budget (maybe on a login node)
+  // does not split the merge: the merge job may get more memory.
+  if (one_process || o_.memory_budget > 0) PlanGroups(graph);
 }
 
 bool TmrMapperStages::ReadPlanMemory(std::string* error) {
@@ -92,23 +81,24 @@ bool TmrMapperStages::ReadPlanMemory(std::string* error) {
                   error);
     }
     fields >> mib;
-    std::string list;  // "name=1,2,..." fields of the merge stage by parts
-    if (id == "seams") {
-      fields >> list;
-      seam_images_ = ReadNumbers(list);
-      continue;
+    bool group_line = false, bad = false;
+    try {
+      group_line = ReadGroupPlanLine(id, images, mib, &fields);
+    } catch (const std::exception&) {  // a number that does not read
+      bad = true;
     }
-    memory_mib_[id] = mib;
-    if (id.rfind("merge.", 0) != 0) continue;
-    ClusterGroup group;  // GroupLine
-    group.num_images = images;
-    group.memory_mib = mib;
-    while (fields >> list) {
-      const size_t eq = list.find('=');
-      (list.substr(0, eq) == "kernels" ? group.kernels : group.extra_images) =
-          ReadNumbers(list.substr(eq + 1));
+    if (bad || (!fields.eof() && fields.fail())) {
+      return Fail("cannot read '" + path + "' (line '" + line.substr(0, 60) +
+                      "'); make the plan again (tmr_mapper partition)",
+                  error);
     }
-    groups_.push_back(std::move(group));
+    if (!group_line) memory_mib_[id] = mib;
+  }
+  if (!GroupsFitTheTree()) {
+    return Fail("the groups of the merge stage in '" + path +
+                    "' do not fit its tree; make the plan again (tmr_mapper "
+                    "partition)",
+                error);
   }
   return true;
 }
@@ -133,7 +123,7 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
               std::to_string(largest->num_images + largest->num_base_images) +
               " images), ";
     }
-    if (one_process)
+    if (one_process && groups_.empty())
       line += "correspondences of all images " + GiBText(beside) + ", ";
     if (groups_.empty()) {
       line += "merge stage " + GiBText(MergeMemoryMiB());

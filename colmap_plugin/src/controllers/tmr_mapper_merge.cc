@@ -19,11 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-bool Fail(const std::string& message, std::string* error) {
-  *error = message;
-  return false;
-}
-
 }  // namespace
 
 std::shared_ptr<colmap::Reconstruction> TmrMapperStages::MergeCluster(

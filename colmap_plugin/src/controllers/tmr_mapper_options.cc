@@ -118,7 +118,8 @@ void TmrRefinementOptions::AddTo(OptionTable* t) {
 }
 
 void TmrMapperOptions::AddTo(OptionTable* t) {
-  t->Add("Mapper.num_threads", &num_threads, "threads (-1: all cores)");
+  t->Add("Mapper.num_threads", &num_threads, "threads (-1: all cores)")
+      .RunSetting();
   mapper.AddTo(t);
   task.AddTo(t);
   merge.AddTo(t);
@@ -126,11 +127,14 @@ void TmrMapperOptions::AddTo(OptionTable* t) {
   t->Add(
        "Tmr.memory_budget", &memory_budget,
        "memory every step must fit, GiB (0: half of what the process may use)")
-      .AtLeast(0);
+      .AtLeast(0)
+      .RunSetting();
   t->Add("Tmr.resume", &resume,
-         "reuse the tasks a killed run into OUT finished");
+         "reuse the tasks a killed run into OUT finished")
+      .RunSetting();
   t->Add("Tmr.keep_work", &keep_work,
-         "keep task databases and models in OUT/.tmr_work");
+         "keep task databases and models in OUT/.tmr_work")
+      .RunSetting();
   tree.AddTo(t);
 }
 

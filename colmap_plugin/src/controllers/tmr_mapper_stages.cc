@@ -30,11 +30,6 @@ std::string TreeJson(const TmrTree& tree) {
   return json.str();
 }
 
-bool Fail(const std::string& message, std::string* error) {
-  *error = message;
-  return false;
-}
-
 }  // namespace
 
 TmrMapperStages::TmrMapperStages(const TmrMapperOptions& options)
@@ -84,7 +79,7 @@ bool TmrMapperStages::Plan(TmrMapperReport* report, bool one_process,
     progress("resuming: reusing the tasks an earlier run finished in " +
              work_.folder().string());
   }
-  EstimateMemory(graph);
+  EstimateMemory(graph, one_process);
   if (!CheckMemory(one_process, progress, error)) return false;
   std::ostringstream plan;
   plan << std::fixed << std::setprecision(0);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -152,6 +153,12 @@ class TmrMapperStages {
                   std::string* error) const;
 
  private:
+  // Sets *error to `message`; returns false.
+  static bool Fail(const std::string& message, std::string* error) {
+    *error = message;
+    return false;
+  }
+
   struct KernelState {
     bool finished = false;
     bool success = false;
@@ -165,8 +172,9 @@ class TmrMapperStages {
   // task its kernel's, then its leaf cluster's and its halo.
   std::vector<int> TaskImages(const TmrMapperTask& task) const;
   // Fills the expected memory of every step (controllers/memory_budget.h),
-  // and the cluster groups when the merge stage exceeds the budget.
-  void EstimateMemory(const MatchGraph& graph);
+  // and the cluster groups when the merge stage exceeds the budget (a
+  // staged plan only with options.memory_budget given).
+  void EstimateMemory(const MatchGraph& graph, bool one_process);
   // The cluster groups (GroupClusters) and their memory, and the join's.
   void PlanGroups(const MatchGraph& graph);
   // A group's images (tree indices, sorted).
@@ -179,6 +187,18 @@ class TmrMapperStages {
   // reads back: one per group ("merge.G IMAGES 0 MIB kernels=K,...
   // extra=I,...", extra maybe empty), then "seams N 0 0 I,...".
   std::string GroupPlanLines() const;
+  // Whether the groups read from a plan name kernels and images of the
+  // tree, each kernel in one group.
+  bool GroupsFitTheTree() const;
+  // What group g's merge depends on, recorded with its models: its
+  // clusters and extra images, its tasks' results and the options that
+  // change results (not Mapper.num_threads nor the budget, which a join
+  // job on Slurm sets otherwise).
+  std::string GroupRecord(int g) const;
+  // Reads such a line back (the fields after the first four in `rest`);
+  // false for a line of another kind.
+  bool ReadGroupPlanLine(const std::string& id, int images, double mib,
+                         std::istringstream* rest);
   // Writes scenes (largest first) to output_path/0, 1, ..., removes the
   // models of an earlier run beyond them, reports the weak links.
   bool WriteScenes(

@@ -118,10 +118,13 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
 }
 
 std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Join(
-    const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const {
+    std::vector<std::shared_ptr<colmap::Reconstruction>> models) const {
   Scenes scenes;
-  for (const auto& model : models)
-    scenes.push_back({model, false, model->NumRegImages(), {}});
+  for (auto& model : models) {
+    const size_t size = model->NumRegImages();
+    scenes.push_back({std::move(model), false, size, {}});
+  }
+  models.clear();
   AlignAllScenes(&scenes, /*joining=*/true);
   std::vector<colmap::Reconstruction*> models_now;
   for (AssemblyScene& scene : scenes) models_now.push_back(scene.model.get());

@@ -87,9 +87,10 @@ class SceneAssembler {
   // without adjustment (the images two groups register hold the seams; the
   // correspondences need only be those of such images), one copy of each
   // image kept, the models below MinModelSize dropped when there are
-  // several. Returns the scene models, largest first.
+  // several. Returns the scene models, largest first. Each model appended
+  // into another is freed once appended, unless the caller holds it too.
   std::vector<std::shared_ptr<colmap::Reconstruction>> Join(
-      const std::vector<std::shared_ptr<colmap::Reconstruction>>& models) const;
+      std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
 
   // Every pair of `scenes` (the final models, in output order) that
   // verified pairs link: how strongly, and why Align keeps them apart.

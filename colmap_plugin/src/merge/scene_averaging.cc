@@ -135,8 +135,11 @@ std::vector<TmrTaskReport> LinkRows(
 void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   SortBySize(scenes);
   const auto start = Clock::now();
-  // Models too small to move as one block stay out (as in MergeScenes).
-  const size_t min_size = o_.merge.complete_models ? MinModelSize() : 0;
+  // Models too small to move as one block stay out (as in MergeScenes),
+  // left to CompleteScenes; a join has no completion after it, and the
+  // images a small model shares with another group's hold it.
+  const size_t min_size =
+      o_.merge.complete_models && !joining ? MinModelSize() : 0;
   std::vector<const colmap::Reconstruction*> models;
   int num_images = 0;
   for (const AssemblyScene& scene : *scenes) {
@@ -198,6 +201,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
     AppendReconstruction(*models[m], placed.part_from_model[m],
                          (*scenes)[root].model.get());
     (*scenes)[root].unrefined = true;
+    (*scenes)[m].model.reset();  // freed here unless the caller holds it
   }
   const int num_held = static_cast<int>(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));

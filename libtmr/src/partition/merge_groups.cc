@@ -2,6 +2,7 @@
 #include "tmr/partition/merge_groups.h"
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <utility>
@@ -25,7 +26,8 @@ std::vector<ClusterLink> LinkClusters(const MatchGraph& graph,
 
 std::vector<std::vector<int>> GroupClusters(
     const std::vector<double>& cost, const std::vector<ClusterLink>& links,
-    double max_cost) {
+    double max_cost,
+    const std::function<double(const std::vector<int>&)>& group_cost) {
   const int n = static_cast<int>(cost.size());
   std::vector<std::vector<std::pair<int, int64_t>>> neighbours(n);
   for (const ClusterLink& link : links) {
@@ -51,13 +53,23 @@ std::vector<std::vector<int>> GroupClusters(
       into.erase(c);
     };
     take(seed);
+    // Whether the group with cluster c still fits.
+    auto fits = [&](int c) {
+      if (!group_cost) return total + cost[c] <= max_cost;
+      std::vector<int> grown = group;
+      grown.push_back(c);
+      return group_cost(grown) <= max_cost;
+    };
     while (true) {
+      // The ungrouped clusters, most matches into the group first.
+      std::vector<std::pair<int64_t, int>> order;
+      for (const auto& [c, m] : into) order.emplace_back(-m, c);
+      std::sort(order.begin(), order.end());
       int best = -1;
-      int64_t best_matches = 0;
-      for (const auto& [c, m] : into) {
-        if (total + cost[c] <= max_cost && (best < 0 || m > best_matches)) {
+      for (const auto& [minus_matches, c] : order) {
+        if (fits(c)) {
           best = c;
-          best_matches = m;
+          break;
         }
       }
       if (best < 0) break;

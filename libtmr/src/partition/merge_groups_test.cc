@@ -41,6 +41,19 @@ TEST(MergeGroups, GroupsFollowTheStrongestLinksWithinTheBudget) {
   EXPECT_EQ(groups, (std::vector<std::vector<int>>{{3, 4, 5}, {0, 1, 2}}));
 }
 
+TEST(MergeGroups, AGroupCostThatDoesNotAddUpDecidesWhatFits) {
+  // Each cluster alone costs 5, of which 2 are a fixed cost that a group
+  // pays once: three clusters need 2 + 3 * 3 = 11, not 15.
+  const std::vector<ClusterLink> links = {{0, 1, 10}, {1, 2, 5}};
+  EXPECT_EQ(GroupClusters({5, 5, 5}, links, 11),
+            (std::vector<std::vector<int>>{{0, 1}, {2}}));
+  const auto group_cost = [](const std::vector<int>& group) {
+    return 2.0 + 3.0 * group.size();
+  };
+  EXPECT_EQ(GroupClusters({5, 5, 5}, links, 11, group_cost),
+            (std::vector<std::vector<int>>{{0, 1, 2}}));
+}
+
 TEST(MergeGroups, EveryClusterInExactlyOneGroupWithinTheBudget) {
   std::vector<double> cost;
   std::vector<ClusterLink> links;

@@ -60,6 +60,11 @@ OptionRow& OptionRow::ChangesTasks() {
   return *this;
 }
 
+OptionRow& OptionRow::RunSetting() {
+  run_setting = true;
+  return *this;
+}
+
 std::string OptionRow::Problem() const {
   double x = 0;
   bool is_double = false;
@@ -118,10 +123,12 @@ bool OptionTable::Check(std::string* error) const {
   return true;
 }
 
-std::string OptionTable::Values(bool tasks_only) const {
+std::string OptionTable::Values(Rows rows) const {
   std::string text;
   for (const OptionRow& row : rows_) {
-    if (tasks_only && !row.changes_tasks) continue;
+    if ((rows == Rows::kTasks && !row.changes_tasks) ||
+        (rows == Rows::kResults && row.run_setting))
+      continue;
     text += row.name + "=" + row.ValueText() + "\n";
   }
   return text;

@@ -25,7 +25,7 @@ struct ToyOptions {
     t->Add("Toy.share", &share, "a share").Above(0).AtMost(1);
     t->Add("Toy.flag", &flag, "a flag");
     t->Add("Toy.seed", &seed, "a seed").ChangesTasks();
-    t->Add("Toy.mode", &mode, "a mode");
+    t->Add("Toy.mode", &mode, "a mode").RunSetting();
   }
 };
 
@@ -47,7 +47,7 @@ TEST(OptionTable, ChecksBoundsAndNamesTheOptionThatFails) {
   EXPECT_TRUE(CheckOptionRows(options, &error));
 }
 
-TEST(OptionTable, ValuesAreExactAndTasksOnlyKeepsTheirRows) {
+TEST(OptionTable, ValuesAreExactAndListTheRowsAsked) {
   ToyOptions options;
   options.share = 0.1 + 0.2;  // 0.30000000000000004: needs 17 digits
   OptionTable table;
@@ -55,7 +55,11 @@ TEST(OptionTable, ValuesAreExactAndTasksOnlyKeepsTheirRows) {
   EXPECT_EQ(table.Values(),
             "Toy.count=3\nToy.share=0.30000000000000004\nToy.flag=1\n"
             "Toy.seed=7\nToy.mode=auto\n");
-  EXPECT_EQ(table.Values(/*tasks_only=*/true), "Toy.count=3\nToy.seed=7\n");
+  EXPECT_EQ(table.Values(OptionTable::Rows::kTasks),
+            "Toy.count=3\nToy.seed=7\n");
+  EXPECT_EQ(table.Values(OptionTable::Rows::kResults),
+            "Toy.count=3\nToy.share=0.30000000000000004\nToy.flag=1\n"
+            "Toy.seed=7\n");
   EXPECT_EQ(std::stod(ExactDoubleText(options.share)), options.share);
   EXPECT_EQ(ExactDoubleText(0.3), "0.3");
   ASSERT_NE(table.Find("Toy.mode"), nullptr);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "tmr/scene/match_graph.h"
@@ -30,8 +31,12 @@ std::vector<ClusterLink> LinkClusters(const MatchGraph& graph,
 // holds strongly linked clusters together; a cluster costlier than
 // `max_cost` is a group alone. Each group is sorted, groups in the order
 // they were seeded. Deterministic (ties go to the smaller index).
+// `group_cost`, when given, is the cost of a group as a whole, for costs
+// that do not add up (clusters that share images, a fixed cost per
+// group): the fit test then uses it; the seeds still go by `cost`.
 std::vector<std::vector<int>> GroupClusters(
     const std::vector<double>& cost, const std::vector<ClusterLink>& links,
-    double max_cost);
+    double max_cost,
+    const std::function<double(const std::vector<int>&)>& group_cost = {});
 
 }  // namespace tmr

@@ -27,6 +27,10 @@ struct OptionRow {
   OptionRow& Below(double bound);
   // A kernel or leaf task made with another value is not reused on resume.
   OptionRow& ChangesTasks();
+  // How a run goes (threads, memory, resuming), not what it makes: left
+  // out of the record of a finished step, so that another run with another
+  // value reuses it.
+  OptionRow& RunSetting();
 
   // "" when the value is allowed, else "NAME must be >= 1" and the like.
   std::string Problem() const;
@@ -42,6 +46,7 @@ struct OptionRow {
   bool min_exclusive = false;
   bool max_exclusive = false;
   bool changes_tasks = false;
+  bool run_setting = false;
 };
 
 class OptionTable {
@@ -54,9 +59,11 @@ class OptionTable {
 
   // False with the first row's problem (OptionRow::Problem) in `error`.
   bool Check(std::string* error) const;
-  // "NAME=VALUE\n" per row, in order; only rows that change tasks when
-  // `tasks_only`.
-  std::string Values(bool tasks_only = false) const;
+  // Which rows Values lists: all, those that change what a run makes (not
+  // RunSetting), those that change tasks (ChangesTasks).
+  enum class Rows { kAll, kResults, kTasks };
+  // "NAME=VALUE\n" per row, in order.
+  std::string Values(Rows rows = Rows::kAll) const;
   // The row called `name`, or nullptr.
   OptionRow* Find(const std::string& name);
 
