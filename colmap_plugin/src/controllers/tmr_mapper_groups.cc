@@ -340,7 +340,8 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
       {"join: load the models of " + std::to_string(groups_.size()) + " groups",
        n, 0, SecondsSince(start), true,
        std::to_string(models.size()) + " models, " +
-           std::to_string(seams.size()) + " images on the seams (in several groups, or matched across)"});
+           std::to_string(seams.size()) +
+           " images on the seams (in several groups, or matched across)"});
   const SceneAssembler assembler(o_, cache, work_.JoinDatabase(),
                                  tree_.image_names, num_threads, record);
   return WriteScenes(assembler.Join(std::move(models)), assembler, progress,
