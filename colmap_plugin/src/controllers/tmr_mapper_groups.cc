@@ -232,6 +232,17 @@ bool TmrMapperStages::GroupsFitTheTree() const {
                                [](int t) { return t == 1; });
 }
 
+std::string TmrMapperStages::UnfinishedTaskOfGroup(
+    int g, const std::vector<TmrMapperTask>& tasks) const {
+  const std::vector<int>& kernels = groups_.at(g).kernels;
+  for (const TmrMapperTask& task : tasks) {
+    if (!task.finished &&
+        std::count(kernels.begin(), kernels.end(), task.kernel))
+      return task.id;
+  }
+  return "";
+}
+
 bool TmrMapperStages::GroupMerged(int g) const {
   const std::string text = ReadFileToString(work_.GroupModels(g) + ".result");
   const std::string record = GroupRecord(g);
@@ -254,12 +265,13 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
     if (progress) progress(name + ": merged by an earlier run");
     return true;
   }
-  const ClusterGroup& group = groups_.at(g);
-  for (const TmrMapperTask& task : Tasks()) {
-    if (!task.finished &&
-        std::count(group.kernels.begin(), group.kernels.end(), task.kernel))
-      return Fail("task " + task.id + " of the group has not finished", error);
+  if (const std::string task = UnfinishedTaskOfGroup(g, Tasks());
+      !task.empty()) {
+    return Fail("merge." + std::to_string(g) + " waits for task " + task +
+                    " of its clusters; run it first (tmr_mapper run_task)",
+                error);
   }
+  const ClusterGroup& group = groups_.at(g);
   auto group_record = [&](TmrTaskReport row) {
     row.name = name + ": " + row.name;
     record(row);

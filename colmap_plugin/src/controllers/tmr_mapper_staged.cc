@@ -27,14 +27,10 @@ TmrMapperPlan PlanOf(const TmrMapperStages& stages) {
                      {}};
   const auto& groups = stages.cluster_groups();
   for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
-    TmrMergeGroup group{"merge." + std::to_string(g), groups[g].num_images,
-                        true, stages.GroupMerged(g), groups[g].memory_mib};
-    for (const TmrMapperTask& task : plan.tasks) {
-      if (!task.finished && std::count(groups[g].kernels.begin(),
-                                       groups[g].kernels.end(), task.kernel))
-        group.ready = false;
-    }
-    plan.merge_groups.push_back(group);
+    plan.merge_groups.push_back(
+        {"merge." + std::to_string(g), groups[g].num_images,
+         stages.UnfinishedTaskOfGroup(g, plan.tasks).empty(),
+         stages.GroupMerged(g), groups[g].memory_mib});
   }
   return plan;
 }
@@ -168,15 +164,9 @@ bool MergeTmrMapperGroup(
   if (!PrepareTmrMapper(options, &effective, error)) return false;
   TmrMapperStages stages(effective);
   if (!stages.Load(error)) return false;
-  const TmrMapperPlan plan = PlanOf(stages);
-  for (int g = 0; g < static_cast<int>(plan.merge_groups.size()); ++g) {
-    if (plan.merge_groups[g].id != group_id) continue;
-    if (!plan.merge_groups[g].ready) {
-      *error = group_id +
-               " waits for tasks of its clusters; run them first (tmr_mapper "
-               "run_task)";
-      return false;
-    }
+  const int num_groups = static_cast<int>(stages.cluster_groups().size());
+  for (int g = 0; g < num_groups; ++g) {
+    if ("merge." + std::to_string(g) != group_id) continue;
     std::mutex mutex;
     auto note = [&](const std::string& line) {
       std::lock_guard<std::mutex> lock(mutex);
@@ -189,7 +179,7 @@ bool MergeTmrMapperGroup(
                              error);
   }
   *error = "the plan has no merge group '" + group_id + "'" +
-           (plan.merge_groups.empty()
+           (num_groups == 0
                 ? " (its merge stage fits the memory budget whole: tmr_mapper "
                   "merge)"
                 : "");

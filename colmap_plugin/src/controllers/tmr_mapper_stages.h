@@ -75,6 +75,10 @@ class TmrMapperStages {
   const std::vector<ClusterGroup>& cluster_groups() const { return groups_; }
   // The largest group's expected peak (0 without groups).
   double LargestGroupMiB() const;
+  // The first of `tasks` (Tasks()) that group g merges and that has not
+  // finished; "" when the group is ready.
+  std::string UnfinishedTaskOfGroup(
+      int g, const std::vector<TmrMapperTask>& tasks) const;
   // Whether group g's models are in the work folder.
   bool GroupMerged(int g) const;
 
