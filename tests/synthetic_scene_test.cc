@@ -76,11 +76,15 @@ SyntheticSceneOptions SmallPlaces() {
   return options;
 }
 
+// On any number of threads too (the pairs' geometries are estimated side by
+// side).
 TEST_F(SyntheticSceneTest, SameSeedWritesByteIdenticalDatabase) {
   SyntheticSceneOptions options = SmallPlaces();
   options.false_pairs_per_100_images = 2;
   options.seed = 42;
+  options.num_threads = 1;
   Write(options, "a");
+  options.num_threads = 3;
   Write(options, "b");
   EXPECT_EQ(ReadFileToString(Db("a")), ReadFileToString(Db("b")));
   for (const char* file : {"cameras.bin", "images.bin", "points3D.bin"}) {

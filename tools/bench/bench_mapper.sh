@@ -25,7 +25,9 @@
 # tmr_mapper (e.g. "--Tmr.keep_work 1"); STOCK_CAP=SECONDS stops `colmap
 # mapper` after that long and reports the images it had registered (a
 # lower bound on its time, for scenes where it takes hours); GLOBAL_CAP=SECONDS
-# does the same for `colmap global_mapper` (reports the stage it was in).
+# does the same for `colmap global_mapper` (reports the stage it was in),
+# HIER_CAP=SECONDS for `colmap hierarchical_mapper` (reports the images its
+# clusters had registered).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -106,9 +108,19 @@ for scene in "${scenes[@]}"; do
           continue
         fi ;;
       colmap_hierarchical)
-        read -r wall peak < <(timed "$out.log" "$COLMAP" hierarchical_mapper \
+        read -r wall peak < <(timed "$out.log" ${HIER_CAP:+timeout -s INT "$HIER_CAP"} \
+          "$COLMAP" hierarchical_mapper \
           --database_path "$out.db" --image_path "$dir/images" --output_path "$out" \
-          --Mapper.num_threads "$THREADS") ;;
+          --Mapper.num_threads "$THREADS")
+        if grep -q 'status 124$' "$out.log.time"; then  # timeout: stopped at the cap
+          # Clusters are mapped side by side and merged at the end: what a
+          # user has when it is stopped is the clusters' registrations.
+          registered=$(grep -c 'Registering image #' "$out.log" || true)
+          echo "$scene,$images,colmap_hierarchical_capped,$wall,$peak,${registered:-0},,0,,,0," >>"$OUT/results.csv"
+          printf "%-10s %-22s %8s s %7s MiB   stopped at the cap: %s registrations in clusters so far, no model\n" \
+            "$scene" "colmap_hierarchical" "$wall" "$peak" "${registered:-0}"
+          continue
+        fi ;;
       colmap_global)
         read -r wall peak < <(timed "$out.log" ${GLOBAL_CAP:+timeout -s INT "$GLOBAL_CAP"} \
           "$COLMAP" global_mapper \

@@ -16,7 +16,13 @@
 # runs go to out/bench_merge_stage/SCENE-TAG, e.g. TAG=parts with
 # TMR_ARGS="--Tmr.memory_budget 1" for a merge stage by parts). The
 # expected peak is the largest step's: the whole merge, or by parts the
-# largest group's or the join's.
+# largest group's or the join's. JOBS=1 (a merge stage by parts) merges each
+# group in a process of its own (`tmr_mapper merge --group merge.G`), then
+# joins (`tmr_mapper merge`), as Slurm jobs would run, and prints each job's
+# wall time and peak; the totals are then their sum and the largest peak.
+# REUSE=1 keeps the run's plan, tasks and merged groups (out/...SCENE.jobs
+# lists the groups done), so that a stage too long for one session goes on
+# where the last call stopped.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -31,15 +37,37 @@ start_results "scene,images,tasks,synth_s,merge_s,peak_mib,s_per_photo,models,la
 for scene in "$@"; do
   dir=out/bench_mapper/$scene
   run="$OUT/$scene${TAG:+-$TAG}"
-  plan_scene "$scene" "$run" "$THREADS"
+  synth=0
+  if [[ -z "${REUSE:-}" || ! -f "$run/plan.txt" ]]; then
+    plan_scene "$scene" "$run" "$THREADS"
+    start=$(date +%s.%N)
+    # shellcheck disable=SC2086
+    "$BIN/tmr_synth_tasks" --plan "$run/plan.txt" --model_path "$dir/gt" ${NOISE_ARGS:-} >"$run.synth.log" 2>&1
+    synth=$(echo "$(date +%s.%N) - $start" | bc)
+  fi
   tasks=$(grep -c -E "^(kernel|leaf)\." "$run/plan.txt")
-  start=$(date +%s.%N)
-  # shellcheck disable=SC2086
-  "$BIN/tmr_synth_tasks" --plan "$run/plan.txt" --model_path "$dir/gt" ${NOISE_ARGS:-} >"$run.synth.log" 2>&1
-  synth=$(echo "$(date +%s.%N) - $start" | bc)
+  if [[ -n "${JOBS:-}" ]]; then  # each group a job of its own, then the join
+    [[ -f "$run.jobs" && -n "${REUSE:-}" ]] || : >"$run.jobs"
+    for group in $(awk '/^merge\.[0-9]+ / { print $1 }' "$run/plan.txt"); do
+      grep -q "^$group " "$run.jobs" && continue  # merged by an earlier call
+      /usr/bin/time -f "%e %M" -o "$run.$group.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
+        --group "$group" --Mapper.num_threads "$THREADS" >"$run.$group.log" 2>&1 ||
+        { tail -3 "$run.$group.log"; continue 2; }
+      job=$(tail -1 "$run.$group.time" | awk '{printf "%s %.0f", $1, $2 / 1024}')
+      echo "$group $job $(awk -v g="$group" '$1 == g { print $2, $4 }' "$run/plan.txt")" >>"$run.jobs"
+      echo "$scene $group: $job (wall s, peak MiB)"
+    done
+  fi
   /usr/bin/time -f "%e %M" -o "$run.merge.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
     --Mapper.num_threads "$THREADS" >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
   read -r wall peak < <(tail -1 "$run.merge.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
+  if [[ -n "${JOBS:-}" ]]; then  # one job after another: the sum, the largest peak
+    echo "$scene join: $wall $peak (wall s, peak MiB)"
+    echo "           jobs (group, wall s, peak MiB, photos, expected MiB):"
+    sed 's/^/             /' "$run.jobs"
+    read -r wall peak < <(awk -v w="$wall" -v p="$peak" '{ w += $2; if ($3 > p) p = $3 }
+      END { printf "%s %d\n", w, p }' "$run.jobs")
+  fi
   expected=$(awk '/^merge/ && $4 > max { max = $4 } END { print max }' "$run/plan.txt")
   "$BIN/tmr_eval" --gt "$dir/gt" --model "$run" --output_json "$run/eval.json" >/dev/null 2>&1
   python3 - "$run/eval.json" "$scene${TAG:+-$TAG}" "$tasks" "$synth" "$wall" "$peak" "$OUT/results.csv" "$expected" <<'PY'

@@ -69,9 +69,14 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   return held + std::max(longest, block);
 }
 
-double JoinPeakMiB(const MemoryLoad& models, const MemoryLoad& seams) {
-  return kProcessMiB + CorrespondencesMiB(seams) +
-         kModelsPerMatchedKeypoint * models.matched_keypoints / kMiB;
+double JoinPeakMiB(const MemoryLoad& largest_group, const MemoryLoad& seams) {
+  // The light copies of the models, beside the group model being read or
+  // the correspondences; then one group's models alone.
+  const double group =
+      kModelsPerMatchedKeypoint * largest_group.matched_keypoints / kMiB;
+  return kProcessMiB +
+         kModelsPerMatchedKeypoint * seams.matched_keypoints / kMiB +
+         std::max(CorrespondencesMiB(seams), group);
 }
 
 MemoryBudget ResolveMemoryBudget(double budget_gib) {

@@ -105,7 +105,7 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
     }
     groups_[best].extra_images.push_back(i);
   }
-  MemoryLoad models;  // the join holds every group's models
+  MemoryLoad largest;  // the join writes one group's models at a time
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     ClusterGroup& group = groups_[g];
     const std::vector<int> images = GroupImages(group);
@@ -114,12 +114,11 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
     group.memory_mib = MergePeakMiB(load, o_.refinement.points_per_image,
                                     o_.refinement.max_block_images);
     memory_mib_["merge." + std::to_string(g)] = group.memory_mib;
-    models.images += load.images;
-    models.keypoints += load.keypoints;
-    models.matched_keypoints += load.matched_keypoints;
+    if (load.matched_keypoints > largest.matched_keypoints) largest = load;
   }
   seam_images_ = SeamImages(graph);
-  memory_mib_["merge"] = JoinPeakMiB(models, LoadOfImages(graph, seam_images_));
+  memory_mib_["merge"] =
+      JoinPeakMiB(largest, LoadOfImages(graph, seam_images_));
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
@@ -315,49 +314,6 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
                              SecondsSince(start), true,
                              std::to_string(scenes.size()) + " models"});
   return true;
-}
-
-bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
-                                 const Progress& progress,
-                                 TmrMapperReport* report,
-                                 std::string* error) const {
-  const auto start = Clock::now();
-  std::vector<std::shared_ptr<colmap::Reconstruction>> models;
-  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    if (!GroupMerged(g)) {
-      return Fail("group " + std::to_string(g) +
-                      " of the merge stage has not been merged",
-                  error);
-    }
-    for (int m = 0;; ++m) {
-      const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
-      if (!fs::is_directory(path)) break;
-      models.push_back(std::make_shared<colmap::Reconstruction>());
-      models.back()->ReadBinary(path.string());
-    }
-  }
-  // The seams' correspondences: those among the images several groups
-  // hold, or that verified pairs link across groups.
-  const std::vector<int>& seams = seam_images_;
-  std::shared_ptr<const colmap::DatabaseCache> cache =
-      std::make_shared<colmap::DatabaseCache>();
-  if (seams.size() > 1) {
-    cache = LoadTaskDatabaseCache(
-        o_.database_path, ImageIdsOf(tree_, seams), work_.JoinDatabase(),
-        o_.mapper.min_num_matches, o_.mapper.ignore_watermarks, error);
-    if (!cache) return false;
-  }
-  const int n = static_cast<int>(tree_.image_ids.size());
-  record(
-      {"join: load the models of " + std::to_string(groups_.size()) + " groups",
-       n, 0, SecondsSince(start), true,
-       std::to_string(models.size()) + " models, " +
-           std::to_string(seams.size()) +
-           " images on the seams (in several groups, or matched across)"});
-  const SceneAssembler assembler(o_, cache, work_.JoinDatabase(),
-                                 tree_.image_names, num_threads, record);
-  return WriteScenes(assembler.Join(std::move(models)), assembler, progress,
-                     report, error);
 }
 
 }  // namespace tmr

@@ -102,17 +102,25 @@ bool TmrMapperStages::WriteScenes(
       return Fail("cannot write model '" + path + "'", error);
     report->model_sizes.push_back(static_cast<int>(scenes[i]->NumRegImages()));
   }
+  return FinishScenes(scenes.size(), assembler.WeakLinks(scenes), progress,
+                      report);
+}
+
+bool TmrMapperStages::FinishScenes(size_t num_scenes,
+                                   std::vector<TmrWeakLink> weak_links,
+                                   const Progress& progress,
+                                   TmrMapperReport* report) const {
   // Models of an earlier run into the same folder that this one has no
   // number for would read as part of its result.
-  for (size_t i = scenes.size();; ++i) {
+  for (size_t i = num_scenes;; ++i) {
     const fs::path stale = fs::path(o_.output_path) / std::to_string(i);
     std::error_code ec;
     if (!fs::is_directory(stale, ec)) break;
     fs::remove_all(stale, ec);
   }
-  report->weak_links = assembler.WeakLinks(scenes);
+  report->weak_links = std::move(weak_links);
   if (progress) {
-    progress("wrote " + std::to_string(scenes.size()) + " models to " +
+    progress("wrote " + std::to_string(num_scenes) + " models to " +
              o_.output_path);
     for (const TmrWeakLink& w : report->weak_links) {
       progress("models " + std::to_string(w.model1) + " and " +

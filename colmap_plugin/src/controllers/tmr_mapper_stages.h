@@ -149,9 +149,11 @@ class TmrMapperStages {
   // the work folder; reused when they are there already.
   bool MergeGroup(int g, int num_threads, const Record& record,
                   const Progress& progress, std::string* error) const;
-  // Then the join: the groups' models placed by the images that several
-  // groups hold (SceneAssembler::Join), written to output_path as
-  // AssembleAndWrite writes them. Every group must have been merged.
+  // Then the join (tmr_mapper_join.cc): the groups' models placed by the
+  // images that several groups hold (SceneAssembler::Join on their
+  // MakeSeamModel copies), each scene written to output_path piece by piece
+  // (ModelWriter), one group's model in memory at a time. Every group must
+  // have been merged.
   bool JoinGroups(int num_threads, const Record& record,
                   const Progress& progress, TmrMapperReport* report,
                   std::string* error) const;
@@ -203,12 +205,16 @@ class TmrMapperStages {
   // false for a line of another kind.
   bool ReadGroupPlanLine(const std::string& id, int images, double mib,
                          std::istringstream* rest);
-  // Writes scenes (largest first) to output_path/0, 1, ..., removes the
-  // models of an earlier run beyond them, reports the weak links.
+  // Writes scenes (largest first) to output_path/0, 1, ..., then
+  // FinishScenes.
   bool WriteScenes(
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& scenes,
       const SceneAssembler& assembler, const Progress& progress,
       TmrMapperReport* report, std::string* error) const;
+  // After output_path/0 .. num_scenes - 1 are written: removes the models
+  // of an earlier run beyond them, reports the weak links.
+  bool FinishScenes(size_t num_scenes, std::vector<TmrWeakLink> weak_links,
+                    const Progress& progress, TmrMapperReport* report) const;
   // Reads the expected memory of every step from plan.txt (0 where an
   // older plan has none).
   bool ReadPlanMemory(std::string* error);

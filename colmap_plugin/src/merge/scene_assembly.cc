@@ -117,20 +117,22 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   return ModelsLargestFirst(&scenes);
 }
 
-std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Join(
+std::vector<JoinedScene> SceneAssembler::Join(
     std::vector<std::shared_ptr<colmap::Reconstruction>> models) const {
   Scenes scenes;
-  for (auto& model : models) {
-    const size_t size = model->NumRegImages();
-    scenes.push_back({std::move(model), false, size, {}});
+  for (int m = 0; m < static_cast<int>(models.size()); ++m) {
+    const size_t size = models[m]->NumRegImages();
+    scenes.push_back({std::move(models[m]), false, size, {}, {{m, {}, {}}}});
   }
   models.clear();
+  // One copy of each image is kept there too.
   AlignAllScenes(&scenes, /*joining=*/true);
-  std::vector<colmap::Reconstruction*> models_now;
-  for (AssemblyScene& scene : scenes) models_now.push_back(scene.model.get());
-  KeepOneCopyOfEachImage(models_now);
   DropSmallModels(&scenes);
-  return ModelsLargestFirst(&scenes);
+  SortBySize(&scenes);
+  std::vector<JoinedScene> joined;
+  for (AssemblyScene& scene : scenes)
+    joined.push_back({std::move(scene.model), std::move(scene.pieces)});
+  return joined;
 }
 
 void SceneAssembler::DropSmallModels(Scenes* scenes) const {

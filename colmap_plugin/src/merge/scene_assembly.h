@@ -2,6 +2,7 @@
 #pragma once
 
 #include <colmap/controllers/incremental_pipeline.h>
+#include <colmap/geometry/sim3.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
 
@@ -26,6 +27,24 @@ namespace tmr {
 int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
                            int min_anchored, colmap::Reconstruction* scene);
 
+// One model of a join (SceneAssembler::Join) as a part of a joined scene:
+// its index among the joined models, the similarity that places it in the
+// scene, and its images whose copy in another model was kept instead.
+struct JoinPiece {
+  int model = 0;
+  colmap::Sim3d scene_from_model;
+  std::vector<colmap::image_t> dropped_images;
+};
+
+// A scene of a join: the joined models (light ones, MakeSeamModel, where the
+// whole ones do not fit in memory together) and how to make it again from
+// the whole models, piece after piece in order (as AppendReconstruction
+// appended them).
+struct JoinedScene {
+  std::shared_ptr<colmap::Reconstruction> model;
+  std::vector<JoinPiece> pieces;
+};
+
 // A scene model and its refinement state, carried through the passes of
 // SceneAssembler::Assemble. The state lives and dies with its scene: a
 // model that merges into another leaves the list with it.
@@ -38,6 +57,8 @@ struct AssemblyScene {
   size_t refined_size = 0;
   // Registered images before the current late pass (RefineLateMerges).
   std::unordered_set<colmap::image_t> held;
+  // In a join, the models it was joined from.
+  std::vector<JoinPiece> pieces;
 };
 
 // Orders scenes by registered images, largest first.
@@ -87,9 +108,10 @@ class SceneAssembler {
   // without adjustment (the images two groups register hold the seams; the
   // correspondences need only be those of such images), one copy of each
   // image kept, the models below MinModelSize dropped when there are
-  // several. Returns the scene models, largest first. Each model appended
-  // into another is freed once appended, unless the caller holds it too.
-  std::vector<std::shared_ptr<colmap::Reconstruction>> Join(
+  // several. Returns the scenes, largest first, each with the pieces it
+  // was made of. Each model appended into another is freed once appended,
+  // unless the caller holds it too.
+  std::vector<JoinedScene> Join(
       std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
 
   // Every pair of `scenes` (the final models, in output order) that

@@ -3,6 +3,7 @@
 // models aligned at once, in parallel, then one similarity averaging over
 // the graph of models, and each connected part appended into its largest
 // model without adjustment between.
+#include <colmap/util/logging.h>
 #include <colmap/util/threading.h>
 
 #include <algorithm>
@@ -190,8 +191,16 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   // part is appended into its first (largest) model, in one frame.
   std::vector<colmap::Reconstruction*> editable;
   for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
-  const int num_copies = KeepOneCopyOfEachImage(editable);
+  std::vector<std::vector<colmap::image_t>> dropped;
+  const int num_copies = KeepOneCopyOfEachImage(editable, &dropped);
   int num_parts = 0;
+  for (int m = 0; m < n; ++m) {
+    std::vector<JoinPiece>& pieces = (*scenes)[m].pieces;
+    if (!pieces.empty()) {  // a join's model, as it entered
+      THROW_CHECK_EQ(pieces.size(), 1);
+      pieces[0].dropped_images = std::move(dropped[m]);
+    }
+  }
   for (int m = 0; m < n; ++m) {
     const int root = placed.part[m];
     if (root == m) {
@@ -200,6 +209,11 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
     }
     AppendReconstruction(*models[m], placed.part_from_model[m],
                          (*scenes)[root].model.get());
+    for (JoinPiece& piece : (*scenes)[m].pieces) {
+      piece.scene_from_model =
+          placed.part_from_model[m] * piece.scene_from_model;
+      (*scenes)[root].pieces.push_back(std::move(piece));
+    }
     (*scenes)[root].unrefined = true;
     (*scenes)[m].model.reset();  // freed here unless the caller holds it
   }

@@ -10,7 +10,8 @@ namespace tmr {
 void AddImageWithoutPoints(const colmap::Reconstruction& source,
                            colmap::image_t image_id,
                            const colmap::Rigid3d& cam_from_world,
-                           colmap::Reconstruction* target) {
+                           colmap::Reconstruction* target,
+                           bool with_keypoints) {
   const colmap::Image& image = source.Image(image_id);
   if (!target->ExistsCamera(image.CameraId()))
     target->AddCamera(source.Camera(image.CameraId()));
@@ -28,8 +29,10 @@ void AddImageWithoutPoints(const colmap::Reconstruction& source,
   copy.SetCameraId(image.CameraId());
   copy.SetFrameId(image.FrameId());
   std::vector<Eigen::Vector2d> xy;
-  xy.reserve(image.NumPoints2D());
-  for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
+  if (with_keypoints) {
+    xy.reserve(image.NumPoints2D());
+    for (const colmap::Point2D& p : image.Points2D()) xy.push_back(p.xy);
+  }
   copy.SetPoints2D(xy);
   target->AddImage(std::move(copy));
   SetPoseAndRegister(image_id, cam_from_world, target);
@@ -63,7 +66,9 @@ void CopyPointsWithTracks(const colmap::Reconstruction& source,
   }
 }
 
-int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models) {
+int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models,
+                           std::vector<std::vector<colmap::image_t>>* dropped) {
+  if (dropped) dropped->assign(models.size(), {});
   // Per image, the model whose copy stays and its number of 3D points.
   std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
   std::vector<std::pair<size_t, colmap::image_t>> copies;
@@ -79,9 +84,29 @@ int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models) {
   for (const auto& [m, id] : copies) {
     if (best.at(id).first == m) continue;
     models[m]->DeRegisterFrame(models[m]->Image(id).FrameId());
+    if (dropped) (*dropped)[m].push_back(id);
     ++removed;
   }
   return removed;
+}
+
+void MakeSeamModel(const colmap::Reconstruction& model,
+                   const std::unordered_set<colmap::image_t>& seam_images,
+                   colmap::Reconstruction* seam) {
+  for (const colmap::image_t id : model.RegImageIds()) {
+    AddImageWithoutPoints(model, id, model.Image(id).CamFromWorld(), seam,
+                          /*with_keypoints=*/seam_images.count(id) > 0);
+  }
+  for (const auto& [point_id, point] : model.Points3D()) {
+    colmap::Point3D cut;
+    cut.xyz = point.xyz;
+    cut.color = point.color;
+    cut.error = point.error;
+    for (const colmap::TrackElement& element : point.track.Elements()) {
+      if (seam_images.count(element.image_id)) cut.track.AddElement(element);
+    }
+    if (cut.track.Length() > 0) seam->AddPoint3D(point_id, std::move(cut));
+  }
 }
 
 }  // namespace tmr

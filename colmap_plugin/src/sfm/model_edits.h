@@ -5,17 +5,20 @@
 
 #include <colmap/scene/reconstruction.h>
 
+#include <unordered_set>
 #include <vector>
 
 namespace tmr {
 
 // Adds image `image_id` of `source` to `target` (id, name, camera,
-// keypoints, none of them on a 3D point; its camera, rig and frame too
-// where `target` lacks them), posed at cam_from_world and registered.
+// keypoints unless `with_keypoints` is false, none of them on a 3D point;
+// its camera, rig and frame too where `target` lacks them), posed at
+// cam_from_world and registered.
 void AddImageWithoutPoints(const colmap::Reconstruction& source,
                            colmap::image_t image_id,
                            const colmap::Rigid3d& cam_from_world,
-                           colmap::Reconstruction* target);
+                           colmap::Reconstruction* target,
+                           bool with_keypoints = true);
 
 // Poses image `image_id` of `model` (through its frame: tmr's frames hold
 // one image each) and registers its frame if it was not.
@@ -34,7 +37,20 @@ void CopyPointsWithTracks(const colmap::Reconstruction& source,
 // register it (the halo of neighbouring clusters), the copy that observes
 // the most 3D points stays (the first model's on a tie) and the others are
 // deregistered, their observations taken out of their tracks. Returns how
-// many copies it deregistered.
-int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models);
+// many copies it deregistered; `dropped` (may be null) receives, per model,
+// the images deregistered from it.
+int KeepOneCopyOfEachImage(
+    const std::vector<colmap::Reconstruction*>& models,
+    std::vector<std::vector<colmap::image_t>>* dropped = nullptr);
+
+// Makes `seam_model` (empty) a light copy of `model` that aligns with
+// other models as `model` would on a seam between them (the join of a
+// merge stage by parts): every registered image at its pose, but only
+// `seam_images` with keypoints, and the points that those observe, their
+// tracks cut to them. Each seam image keeps its number of 3D points, so
+// KeepOneCopyOfEachImage decides on such copies as on the whole models.
+void MakeSeamModel(const colmap::Reconstruction& model,
+                   const std::unordered_set<colmap::image_t>& seam_images,
+                   colmap::Reconstruction* seam_model);
 
 }  // namespace tmr

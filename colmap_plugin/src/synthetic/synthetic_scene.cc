@@ -4,6 +4,7 @@
 #include <colmap/estimators/two_view_geometry.h>
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction.h>
+#include <colmap/util/threading.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "synthetic/observations.h"
 #include "synthetic/scene_layout.h"
@@ -218,14 +220,30 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
       }
       database->WriteKeypoints(image_id, feature_keypoints);
     }
-    for (const ImagePairMatches& pair : pairs) {
-      const int n1 = keypoints[pair.image1].xy.size();
-      const int n2 = keypoints[pair.image2].xy.size();
-      database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
-                             RawMatches(pair, n1, n2, options));
-      database->WriteTwoViewGeometry(
-          pair.image1 + 1, pair.image2 + 1,
-          VerifiedGeometry(pair, cameras, keypoints, options.seed));
+    // Each chunk's geometries estimated side by side (each pair seeds its
+    // own RANSAC), then written in order.
+    constexpr size_t kChunk = 4096;
+    colmap::ThreadPool pool(options.num_threads);
+    std::vector<colmap::TwoViewGeometry> geometries;
+    for (size_t begin = 0; begin < pairs.size(); begin += kChunk) {
+      const size_t end = std::min(pairs.size(), begin + kChunk);
+      geometries.assign(end - begin, colmap::TwoViewGeometry());
+      for (size_t p = begin; p < end; ++p) {
+        pool.AddTask([&, p] {
+          geometries[p - begin] =
+              VerifiedGeometry(pairs[p], cameras, keypoints, options.seed);
+        });
+      }
+      pool.Wait();
+      for (size_t p = begin; p < end; ++p) {
+        const ImagePairMatches& pair = pairs[p];
+        const int n1 = keypoints[pair.image1].xy.size();
+        const int n2 = keypoints[pair.image2].xy.size();
+        database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
+                               RawMatches(pair, n1, n2, options));
+        database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1,
+                                       geometries[p - begin]);
+      }
     }
   }
 

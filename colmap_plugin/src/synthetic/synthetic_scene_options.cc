@@ -144,6 +144,9 @@ void SyntheticSceneOptions::AddTo(OptionTable* t) {
   t->Add("false_pairs_per_100_images", &false_pairs_per_100_images,
          "false verified pairs")
       .AtLeast(0);
+  t->Add("num_threads", &num_threads,
+         "threads of the two-view estimation (-1: one per core)")
+      .AtLeast(-1);
 }
 
 bool SyntheticSceneOptions::Check(std::string* error) const {

@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <queue>
+#include <tuple>
 #include <utility>
 
 namespace tmr {
@@ -24,24 +27,72 @@ std::vector<ClusterLink> LinkClusters(const MatchGraph& graph,
   return links;
 }
 
+namespace {
+
+using Neighbours = std::vector<std::vector<std::pair<int, int64_t>>>;
+constexpr int kUnreached = std::numeric_limits<int>::max();
+
+// Links between clusters from `source`, over the clusters `open` allows
+// (kUnreached where none leads).
+std::vector<int> Hops(const Neighbours& neighbours, int source,
+                      const std::vector<bool>& open) {
+  std::vector<int> hops(neighbours.size(), kUnreached);
+  std::queue<int> queue;
+  hops[source] = 0;
+  queue.push(source);
+  while (!queue.empty()) {
+    const int c = queue.front();
+    queue.pop();
+    for (const auto& [other, matches] : neighbours[c]) {
+      if (!open[other] || hops[other] != kUnreached) continue;
+      hops[other] = hops[c] + 1;
+      queue.push(other);
+    }
+  }
+  return hops;
+}
+
+// The cluster farthest from `source` (the smallest on a tie).
+int Farthest(const std::vector<int>& hops) {
+  int farthest = 0;
+  for (int c = 0; c < static_cast<int>(hops.size()); ++c) {
+    if (hops[c] != kUnreached && hops[c] > hops[farthest]) farthest = c;
+  }
+  return farthest;
+}
+
+}  // namespace
+
 std::vector<std::vector<int>> GroupClusters(
     const std::vector<double>& cost, const std::vector<ClusterLink>& links,
     double max_cost,
     const std::function<double(const std::vector<int>&)>& group_cost) {
   const int n = static_cast<int>(cost.size());
-  std::vector<std::vector<std::pair<int, int64_t>>> neighbours(n);
+  if (n == 0) return {};
+  Neighbours neighbours(n);
   for (const ClusterLink& link : links) {
     neighbours.at(link.cluster1).emplace_back(link.cluster2, link.num_matches);
     neighbours.at(link.cluster2).emplace_back(link.cluster1, link.num_matches);
   }
+  // The sweep's origin: a peripheral cluster, the farthest from the
+  // costliest one.
+  const std::vector<bool> all(n, true);
+  const int costliest = static_cast<int>(
+      std::max_element(cost.begin(), cost.end()) - cost.begin());
+  const std::vector<int> from_origin =
+      Hops(neighbours, Farthest(Hops(neighbours, costliest, all)), all);
   std::vector<int> seeds(n);
   std::iota(seeds.begin(), seeds.end(), 0);
-  std::stable_sort(seeds.begin(), seeds.end(),
-                   [&](int a, int b) { return cost[a] > cost[b]; });
+  std::stable_sort(seeds.begin(), seeds.end(), [&](int a, int b) {
+    return from_origin[a] < from_origin[b];
+  });
   std::vector<bool> grouped(n, false);
   std::vector<std::vector<int>> groups;
   for (const int seed : seeds) {
     if (grouped[seed]) continue;
+    std::vector<bool> open(n);
+    for (int c = 0; c < n; ++c) open[c] = !grouped[c];
+    const std::vector<int> from_seed = Hops(neighbours, seed, open);
     std::vector<int> group = {seed};
     grouped[seed] = true;
     double total = cost[seed];
@@ -61,12 +112,13 @@ std::vector<std::vector<int>> GroupClusters(
       return group_cost(grown) <= max_cost;
     };
     while (true) {
-      // The ungrouped clusters, most matches into the group first.
-      std::vector<std::pair<int64_t, int>> order;
-      for (const auto& [c, m] : into) order.emplace_back(-m, c);
+      // The ungrouped clusters next to the group, the nearest to the seed
+      // first, then those with the most matches into the group.
+      std::vector<std::tuple<int, int64_t, int>> order;
+      for (const auto& [c, m] : into) order.emplace_back(from_seed[c], -m, c);
       std::sort(order.begin(), order.end());
       int best = -1;
-      for (const auto& [minus_matches, c] : order) {
+      for (const auto& [hops, minus_matches, c] : order) {
         if (fits(c)) {
           best = c;
           break;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace tmr {
 namespace {
 
@@ -32,13 +34,32 @@ TEST(MergeGroups, EverythingInOneGroupWhenItFits) {
   EXPECT_EQ(groups, (std::vector<std::vector<int>>{{0, 1, 2}}));
 }
 
-TEST(MergeGroups, GroupsFollowTheStrongestLinksWithinTheBudget) {
-  // A chain 0 - 1 - 2 - 3 - 4 - 5 with a weak link between 2 and 3: two
-  // groups of three, cut at the weak link.
+TEST(MergeGroups, AChainIsCutWhereTheBudgetEnds) {
+  // A chain 0 - 1 - 2 - 3 - 4 - 5: grown from its end, two groups of three.
   const std::vector<ClusterLink> links = {
       {0, 1, 900}, {1, 2, 800}, {2, 3, 10}, {3, 4, 700}, {4, 5, 600}};
   const auto groups = GroupClusters({1, 1, 1, 1.5, 1, 1}, links, 3.5);
-  EXPECT_EQ(groups, (std::vector<std::vector<int>>{{3, 4, 5}, {0, 1, 2}}));
+  EXPECT_EQ(groups, (std::vector<std::vector<int>>{{0, 1, 2}, {3, 4, 5}}));
+}
+
+TEST(MergeGroups, GroupsArePlacesNotSheets) {
+  // Two rows of clusters over the same places (as the photos of a street's
+  // north and south facades): strong links along each row (clusters i and
+  // i + 1), weak ones across (clusters i and 6 + i). Each group holds both
+  // rows of half of the places, not one row of all of them.
+  std::vector<ClusterLink> links;
+  for (int i = 0; i < 6; ++i) {
+    if (i < 5) links.push_back({i, i + 1, 900});
+    if (i < 5) links.push_back({6 + i, 7 + i, 900});
+    links.push_back({i, 6 + i, 10});
+  }
+  std::sort(links.begin(), links.end(), [](const auto& a, const auto& b) {
+    return std::make_pair(a.cluster1, a.cluster2) <
+           std::make_pair(b.cluster1, b.cluster2);
+  });
+  const auto groups = GroupClusters(std::vector<double>(12, 1), links, 6);
+  EXPECT_EQ(groups, (std::vector<std::vector<int>>{{3, 4, 5, 9, 10, 11},
+                                                   {0, 1, 2, 6, 7, 8}}));
 }
 
 TEST(MergeGroups, AGroupCostThatDoesNotAddUpDecidesWhatFits) {
@@ -46,7 +67,7 @@ TEST(MergeGroups, AGroupCostThatDoesNotAddUpDecidesWhatFits) {
   // pays once: three clusters need 2 + 3 * 3 = 11, not 15.
   const std::vector<ClusterLink> links = {{0, 1, 10}, {1, 2, 5}};
   EXPECT_EQ(GroupClusters({5, 5, 5}, links, 11),
-            (std::vector<std::vector<int>>{{0, 1}, {2}}));
+            (std::vector<std::vector<int>>{{1, 2}, {0}}));
   const auto group_cost = [](const std::vector<int>& group) {
     return 2.0 + 3.0 * group.size();
   };
@@ -74,7 +95,10 @@ TEST(MergeGroups, EveryClusterInExactlyOneGroupWithinTheBudget) {
     if (group.size() > 1) EXPECT_LE(total, 10);
   }
   for (const int s : seen) EXPECT_EQ(s, 1);
-  EXPECT_EQ(groups.front(), std::vector<int>{5});
+  for (const auto& group : groups) {
+    if (std::count(group.begin(), group.end(), 5))
+      EXPECT_EQ(group, std::vector<int>{5});
+  }
   // Deterministic.
   EXPECT_EQ(GroupClusters(cost, links, 10), groups);
 }

@@ -131,6 +131,10 @@ struct SyntheticSceneOptions {
   // each between two images that share no point, with 15 to 40 inliers.
   double false_pairs_per_100_images = 1.0;
 
+  // Threads that estimate the pairs' two-view geometries (-1: one per
+  // core); the database does not depend on it.
+  int num_threads = -1;
+
   // Lists the options as rows (tmr/util/option_table.h): tmr_synth's
   // command line reads them.
   void AddTo(OptionTable* table);
