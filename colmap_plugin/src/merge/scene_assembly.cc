@@ -125,7 +125,7 @@ std::vector<JoinedScene> SceneAssembler::Join(
     scenes.push_back({std::move(models[m]), false, size, {}, {{m, {}, {}}}});
   }
   models.clear();
-  // One copy of each image is kept there too.
+  // AlignAllScenes also keeps one copy of each image.
   AlignAllScenes(&scenes, /*joining=*/true);
   DropSmallModels(&scenes);
   SortBySize(&scenes);
