@@ -100,7 +100,8 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   record({"join: write " + std::to_string(joined.size()) +
               " models, one group's model at a time",
           n, num_registered, SecondsSince(write_start), true, ""});
-  return FinishScenes(joined.size(), std::move(weak_links), progress, report);
+  FinishScenes(joined.size(), std::move(weak_links), progress, report);
+  return true;
 }
 
 }  // namespace tmr

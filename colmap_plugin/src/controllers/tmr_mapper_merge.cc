@@ -102,11 +102,11 @@ bool TmrMapperStages::WriteScenes(
       return Fail("cannot write model '" + path + "'", error);
     report->model_sizes.push_back(static_cast<int>(scenes[i]->NumRegImages()));
   }
-  return FinishScenes(scenes.size(), assembler.WeakLinks(scenes), progress,
-                      report);
+  FinishScenes(scenes.size(), assembler.WeakLinks(scenes), progress, report);
+  return true;
 }
 
-bool TmrMapperStages::FinishScenes(size_t num_scenes,
+void TmrMapperStages::FinishScenes(size_t num_scenes,
                                    std::vector<TmrWeakLink> weak_links,
                                    const Progress& progress,
                                    TmrMapperReport* report) const {
@@ -130,7 +130,6 @@ bool TmrMapperStages::FinishScenes(size_t num_scenes,
                " matches); " + w.reason);
     }
   }
-  return true;
 }
 
 TaskGraph::Task TmrMapperStages::ClusterMergeTask(

@@ -213,7 +213,7 @@ class TmrMapperStages {
       TmrMapperReport* report, std::string* error) const;
   // After output_path/0 .. num_scenes - 1 are written: removes the models
   // of an earlier run beyond them, reports the weak links.
-  bool FinishScenes(size_t num_scenes, std::vector<TmrWeakLink> weak_links,
+  void FinishScenes(size_t num_scenes, std::vector<TmrWeakLink> weak_links,
                     const Progress& progress, TmrMapperReport* report) const;
   // Reads the expected memory of every step from plan.txt (0 where an
   // older plan has none).
