@@ -52,11 +52,12 @@ std::vector<int> Hops(const Neighbours& neighbours, int source,
   return hops;
 }
 
-// The cluster farthest from `source` (the smallest on a tie).
+// The reached cluster with the most hops (the smallest on a tie).
 int Farthest(const std::vector<int>& hops) {
-  int farthest = 0;
+  int farthest = -1;
   for (int c = 0; c < static_cast<int>(hops.size()); ++c) {
-    if (hops[c] != kUnreached && hops[c] > hops[farthest]) farthest = c;
+    if (hops[c] != kUnreached && (farthest < 0 || hops[c] > hops[farthest]))
+      farthest = c;
   }
   return farthest;
 }

@@ -75,6 +75,15 @@ TEST(MergeGroups, AGroupCostThatDoesNotAddUpDecidesWhatFits) {
             (std::vector<std::vector<int>>{{0, 1, 2}}));
 }
 
+TEST(MergeGroups, TheOriginIsFoundInTheCostliestClustersPart) {
+  // Cluster 0 alone; the chain 1 - 2 - 3 - 4 holds the costliest (3): the
+  // sweep starts at its far end, 1, not at the unlinked cluster 0.
+  const std::vector<ClusterLink> links = {
+      {1, 2, 100}, {2, 3, 100}, {3, 4, 100}};
+  EXPECT_EQ(GroupClusters({1, 1, 1, 2, 1}, links, 2.5),
+            (std::vector<std::vector<int>>{{1, 2}, {3}, {4}, {0}}));
+}
+
 TEST(MergeGroups, EveryClusterInExactlyOneGroupWithinTheBudget) {
   std::vector<double> cost;
   std::vector<ClusterLink> links;
