@@ -46,7 +46,8 @@ function(tmr_add_executable name)
 endfunction()
 
 # tmr_add_test(NAME SRCS file... LINK lib... [LABELS label...])
-# A GoogleTest executable whose tests are registered with ctest one by one.
+# A GoogleTest executable whose tests are registered with ctest one by one,
+# each labelled `quick` (docs/testing.md) besides LABELS.
 function(tmr_add_test name)
   if(NOT TMR_BUILD_TESTS)
     return()
@@ -56,10 +57,26 @@ function(tmr_add_test name)
   target_compile_options(${name} PRIVATE ${TMR_WARNING_FLAGS})
   target_include_directories(${name} PRIVATE ${ARG_INCLUDE})
   target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
+  set(labels ${ARG_LABELS} quick)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}"
+    PROPERTIES LABELS "${labels}"
     DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# tmr_label_by_duration(LONG test...): every test that add_test registered
+# in this directory gets the label `long` when it is one of LONG (or a
+# real-photo test, real_images.*), else `quick` (docs/testing.md).
+function(tmr_label_by_duration)
+  cmake_parse_arguments(ARG "" "" "LONG" ${ARGN})
+  get_property(tests DIRECTORY PROPERTY TESTS)
+  foreach(test IN LISTS tests)
+    if(test IN_LIST ARG_LONG OR test MATCHES "^real_images\\.")
+      set_property(TEST ${test} APPEND PROPERTY LABELS long)
+    else()
+      set_property(TEST ${test} APPEND PROPERTY LABELS quick)
+    endif()
+  endforeach()
 endfunction()
 
 # tmr_find_colmap(MIN_VERSION MODE): find_package(COLMAP) without a version

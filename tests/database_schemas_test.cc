@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The databases users bring (issue 24, item 3): the same photos in COLMAP
+// The databases users bring: the same photos in COLMAP
 // 3.8's schema (written by SQL here, with the zero matrices and identity
 // relative poses 3.x wrote where nothing was estimated) and in a COLMAP 4
 // database in WAL mode whose latest writes sit only in its -wal file give

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The scene assembly's first pass (issue 42, item 2): every pair of linked
+// The scene assembly's first pass: every pair of linked
 // models aligned at once, in parallel, then one similarity averaging over
 // the graph of models, and each connected part appended into its largest
 // model without adjustment between.

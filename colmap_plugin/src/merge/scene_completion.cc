@@ -41,8 +41,7 @@ std::unordered_set<std::string> HeldImageNames(
 // matched to keypoints of images in `before`. Only they can see that many
 // points of the scene before completion (RemoveUnanchoredImages); any other
 // image completion registers is placed on points that images registered
-// after it triangulated, and is taken out again. On plazas8 completion
-// registered 1,205 such images one by one before taking them out (issue 42).
+// after it triangulated, and is taken out again.
 std::unordered_set<colmap::image_t> ImagesMatchedToScene(
     const colmap::DatabaseCache& cache,
     const std::unordered_map<colmap::image_t,

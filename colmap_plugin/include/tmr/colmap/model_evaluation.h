@@ -61,10 +61,9 @@ struct ModelEvaluation {
   // orientations onto the reference's (a robust mean over the images).
   ErrorStatistics rotation_error_deg;
   // The same errors after the sim3 fitted to the camera centres, as
-  // COLMAP's ComputeImageAlignmentError gives them: what docs/benchmarks.md
-  // reported before session 24. Its rotation is only as good as the centres
-  // constrain it, which on small or flat camera layouts adds more error
-  // than it measures.
+  // COLMAP's ComputeImageAlignmentError gives them. Its rotation is only as
+  // good as the centres constrain it, which on small or flat camera layouts
+  // adds more error than it measures.
   ErrorStatistics centre_aligned_rotation_error_deg;
   ErrorStatistics position_error;  // share of the scene scale
 

@@ -65,7 +65,7 @@ struct TmrTaskOptions {
   // Growth of a task's model between two of COLMAP's global adjustments
   // (its ba_global_images_ratio and ba_global_points_ratio, 1.1 in COLMAP).
   // Every merged model gets a full global adjustment, so the tasks can
-  // afford fewer (figures: docs/benchmarks.md, "Mapper (issue 5)").
+  // afford fewer (figures: docs/benchmarks.md).
   double ba_global_ratio = 2.0;  // --Tmr.task_ba_global_ratio
   // Check every kernel model against its verified matches (triangulated
   // with the model's poses, those no common track holds must reproject
