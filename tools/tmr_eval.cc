@@ -19,7 +19,7 @@
 #include "tmr/colmap/model_evaluation.h"
 
 #include "drawing/top_view_picture.h"
-#include "tmr_options.h"
+#include "command_line.h"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,9 @@
 
 #include "drawing/partition_picture.h"
 #include "tmr/io/database_reader.h"
-#include "tmr_options.h"
+#include "command_line.h"
+#include "tmr/partition/tmr_tree.h"
+#include "tree_summary.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
