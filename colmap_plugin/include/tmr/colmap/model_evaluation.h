@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tmr/colmap/match_consistency.h"
+#include "tmr/colmap/match_consistency_options.h"
 
 namespace tmr {
 
@@ -81,7 +81,7 @@ struct ModelEvaluation {
   // Names of the model's registered images.
   std::vector<std::string> image_names;
   // With options.database_path: the model against the database's verified
-  // matches (tmr/colmap/match_consistency.h), tested and judged with
+  // matches (tmr/colmap/match_consistency_options.h), tested and judged with
   // options.match_consistency.
   std::optional<MatchConsistency> match_consistency;
   bool match_consistent = false;  // match_consistency passes the options
