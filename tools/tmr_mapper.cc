@@ -99,8 +99,9 @@ int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
                       ? tmr::PlanTmrMapper(o, &plan, &error, progress)
                       : tmr::ReadTmrMapperPlan(o, &plan, &error);
   if (!ok) return Error(error);
-  if (stage == "partition" && !tmr::DrawRunPartitionPicture(o.database_path, o.match_graph,
-                                   o.output_path))
+  if (stage == "partition" &&
+      !tmr::DrawRunPartitionPicture(o.database_path, o.match_graph,
+                                    o.output_path))
     progress("partition.png skipped: too many images to draw");
   std::cout << std::fixed << std::setprecision(0);
   for (const tmr::TmrMapperTask& t : plan.tasks) {
@@ -143,8 +144,8 @@ int RunOrMerge(const std::string& stage, const tmr::TmrMapperOptions& o,
                       ? tmr::MergeTmrMapper(o, &report, &error, progress)
                       : tmr::RunTmrMapper(o, &report, &error, progress);
   if (!ok) return Error(error);
-  if (stage == "run" && !tmr::DrawRunPartitionPicture(o.database_path, o.match_graph,
-                                   o.output_path))
+  if (stage == "run" && !tmr::DrawRunPartitionPicture(
+                            o.database_path, o.match_graph, o.output_path))
     progress("partition.png skipped: too many images to draw");
   std::cout << "tmr_mapper: " << report.num_images << " images, "
             << report.model_sizes.size() << " models (registered:";

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "command_line.h"
 #include "drawing/partition_picture.h"
 #include "tmr/io/database_reader.h"
-#include "command_line.h"
 #include "tmr/partition/tmr_tree.h"
 #include "tree_summary.h"
 

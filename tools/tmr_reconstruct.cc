@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
         (fs::path(mapper.output_path) / "project.ini").string(),
         tmr::ProjectIni(desc, vm));
     tmr::DrawRunPartitionPicture(mapper.database_path, mapper.match_graph,
-                                   mapper.output_path);
+                                 mapper.output_path);
   } catch (const std::exception& e) {
     std::cerr << "tmr_reconstruct: error: " << e.what() << "\n";
     return 1;

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "evaluation/evaluate_reconstruction.h"
@@ -56,6 +57,28 @@ void TurnEasternHalf(double degrees, colmap::Reconstruction* model) {
   }
 }
 
+// TURN_DEG of the command line (0.5 without it); nothing, after one error
+// line, when it is not a number of degrees in (0, 90).
+std::optional<double> TurnDegrees(int argc, char** argv) {
+  if (argc < 5) return 0.5;
+  char* end = nullptr;
+  const double turn_deg = std::strtod(argv[4], &end);
+  if (*argv[4] == '\0' || *end != '\0' || !(turn_deg > 0 && turn_deg < 90)) {
+    std::cerr << "bench_point_selection: error: TURN_DEG must be a number "
+                 "of degrees in (0, 90), not '"
+              << argv[4] << "'\n";
+    return std::nullopt;
+  }
+  return turn_deg;
+}
+
+// A task database of this run's own in the temporary folder.
+std::string ScratchDatabasePath() {
+  return (std::filesystem::temp_directory_path() /
+          ("bench_point_selection_" + std::to_string(getpid()) + ".db"))
+      .string();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -64,17 +87,9 @@ int main(int argc, char** argv) {
                  "[TURN_DEG]\n";
     return 2;
   }
-  double turn_deg = 0.5;
-  if (argc == 5) {
-    char* end = nullptr;
-    turn_deg = std::strtod(argv[4], &end);
-    if (*argv[4] == '\0' || *end != '\0' || !(turn_deg > 0 && turn_deg < 90)) {
-      std::cerr << "bench_point_selection: error: TURN_DEG must be a number "
-                   "of degrees in (0, 90), not '"
-                << argv[4] << "'\n";
-      return 2;
-    }
-  }
+  const std::optional<double> turn = TurnDegrees(argc, argv);
+  if (!turn) return 2;
+  const double turn_deg = *turn;
   colmap::Reconstruction merged, truth;
   try {
     merged.Read(argv[2]);
@@ -85,10 +100,7 @@ int main(int argc, char** argv) {
   }
   const std::vector<colmap::image_t> registered = merged.RegImageIds();
   const std::vector<uint32_t> ids(registered.begin(), registered.end());
-  const std::string scratch =
-      (std::filesystem::temp_directory_path() /
-       ("bench_point_selection_" + std::to_string(getpid()) + ".db"))
-          .string();
+  const std::string scratch = ScratchDatabasePath();
   std::string error;
   const auto cache =
       tmr::LoadTaskDatabaseCache(argv[1], ids, scratch, 15, false, &error);

@@ -110,8 +110,9 @@ bool DrawRunPartitionPicture(const std::string& database_path,
   tree_file.clear();
   tree_file.seekg(0);
   const TmrTree tree = ReadTmrTreeJson(tree_file, names);
-  DrawPartitionPicture(BuildSimilarityGraph(graph), tree,
-                       (std::filesystem::path(output_path) / "partition.png").string());
+  DrawPartitionPicture(
+      BuildSimilarityGraph(graph), tree,
+      (std::filesystem::path(output_path) / "partition.png").string());
   return true;
 }
 
