@@ -16,7 +16,8 @@
 #include <unordered_set>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "sfm/model_edits.h"
 #include "sfm/block_adjustment.h"
 #include "test_scene.h"
 

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "merge/model_merging.h"
+#include "sfm/model_edits.h"
 #include "test_scene.h"
 
 namespace tmr {

@@ -16,7 +16,9 @@
 
 #include "evaluation/evaluate_reconstruction.h"
 #include "merge/cluster_merge.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/shared_track_alignment.h"
+#include "sfm/model_edits.h"
 #include "merge/registration_alignment.h"
 #include "merge/scene_assembly.h"
 #include "test_scene.h"

@@ -14,7 +14,7 @@
 #include <iostream>
 
 #include "io/task_database.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
 
 int main(int argc, char** argv) {
   if (argc != 3 && argc != 4) {

@@ -28,7 +28,8 @@
 
 #include "evaluation/evaluate_reconstruction.h"
 #include "io/task_database.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "sfm/model_edits.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace {

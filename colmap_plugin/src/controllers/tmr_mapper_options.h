@@ -5,7 +5,7 @@
 
 #include <colmap/controllers/incremental_pipeline.h>
 
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {

@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "merge/model_merging.h"
+#include "sfm/model_edits.h"
 
 namespace tmr {
 namespace {

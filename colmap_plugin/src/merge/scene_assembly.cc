@@ -6,7 +6,8 @@
 #include <unordered_set>
 
 #include "controllers/tmr_mapper_options.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/model_alignment.h"
 #include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 

@@ -13,7 +13,9 @@
 #include <unordered_set>
 #include <vector>
 
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/shared_track_alignment.h"
+#include "sfm/model_edits.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
