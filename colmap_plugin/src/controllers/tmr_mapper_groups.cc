@@ -290,8 +290,8 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
   for (auto& part : PartModels(&group.kernels)) models.push_back(part);
   std::vector<std::string> names;
   for (const int i : images) names.push_back(tree_.image_names.at(i));
-  const SceneAssembler assembler(o_, cache, work_.GroupDatabase(g), names,
-                                 num_threads, group_record);
+  const SceneAssembler assembler(AssemblyOptions(o_, num_threads), cache,
+                                 work_.GroupDatabase(g), names, group_record);
   const auto scenes = assembler.Assemble(models, /*drop_small_models=*/false);
   const fs::path folder(work_.GroupModels(g));
   std::error_code ec;

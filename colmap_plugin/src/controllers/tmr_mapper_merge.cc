@@ -82,8 +82,9 @@ bool TmrMapperStages::AssembleAndWrite(
     const Record& record, const Progress& progress, TmrMapperReport* report,
     std::string* error) const {
   for (auto& part : PartModels()) models.push_back(std::move(part));
-  const SceneAssembler assembler(o_, std::move(cache), work_.MergeDatabase(),
-                                 tree_.image_names, num_threads, record);
+  const SceneAssembler assembler(AssemblyOptions(o_, num_threads),
+                                 std::move(cache), work_.MergeDatabase(),
+                                 tree_.image_names, record);
   const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
       assembler.Assemble(models);
   return WriteScenes(scenes, assembler, progress, report, error);

@@ -177,7 +177,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   // left to CompleteScenes; a join has no completion after it, and the
   // images a small model shares with another group's hold it.
   const size_t min_size =
-      o_.merge.complete_models && !joining ? MinModelSize() : 0;
+      o_.complete_models && !joining ? MinModelSize() : 0;
   std::vector<const colmap::Reconstruction*> models;
   int num_images = 0;
   for (const AssemblyScene& scene : *scenes) {
@@ -195,7 +195,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   std::vector<ModelAlignment> alignments(keys.size());
   std::vector<double> seconds(keys.size());
   {
-    colmap::ThreadPool pool(std::max(1, num_threads_));
+    colmap::ThreadPool pool(std::max(1, o_.num_threads));
     for (size_t p = 0; p < keys.size(); ++p) {
       pool.AddTask([&, p] {
         const auto pair_start = Clock::now();
