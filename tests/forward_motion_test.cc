@@ -13,6 +13,8 @@
 
 #include <filesystem>
 
+#include "controllers/forward_motion_options.h"
+
 namespace tmr {
 namespace {
 
