@@ -16,6 +16,7 @@
 #include <unordered_set>
 
 #include "evaluation/evaluate_reconstruction.h"
+#include "io/model_files.h"
 #include "merge/merged_model_refinement.h"
 #include "sfm/model_edits.h"
 #include "sfm/block_adjustment.h"

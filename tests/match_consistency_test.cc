@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "evaluation/evaluate_reconstruction.h"
+#include "io/model_files.h"
 #include "sfm/match_consistency.h"
 #include "sfm/reconstruction_task.h"
 #include "test_scene.h"

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
+#include "io/model_files.h"
 #include "sfm/model_edits.h"
 #include "test_scene.h"
 

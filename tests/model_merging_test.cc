@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "evaluation/evaluate_reconstruction.h"
+#include "io/model_files.h"
 #include "merge/cluster_merge.h"
 #include "merge/merged_model_refinement.h"
 #include "merge/shared_track_alignment.h"

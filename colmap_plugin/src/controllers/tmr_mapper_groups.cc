@@ -15,6 +15,7 @@
 #include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "io/model_files.h"
 #include "io/task_database.h"
 #include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"

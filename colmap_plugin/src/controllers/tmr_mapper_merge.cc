@@ -8,6 +8,7 @@
 
 #include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "io/model_files.h"
 #include "merge/cluster_merge.h"
 #include "merge/scene_assembly.h"
 #include "tmr/io/atomic_file.h"
