@@ -5,12 +5,13 @@ set(TMR_WARNING_FLAGS -Wall -Wextra -Wno-unused-parameter)
 
 # tmr_add_library(NAME
 #   SRCS file...            sources
-#   PUBLIC_INCLUDE dir      public include directory (installed)
+#   PUBLIC_INCLUDE dir      public include directory (installed, unless
+#                           NO_HEADER_INSTALL: another target installs it)
 #   PRIVATE_INCLUDE dir...  private include directories
 #   PUBLIC_LINK lib...      dependencies that appear in public headers
 #   PRIVATE_LINK lib...)    implementation dependencies
 function(tmr_add_library name)
-  cmake_parse_arguments(ARG "" "PUBLIC_INCLUDE"
+  cmake_parse_arguments(ARG "NO_HEADER_INSTALL" "PUBLIC_INCLUDE"
                         "SRCS;PRIVATE_INCLUDE;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
   add_library(${name} ${ARG_SRCS})
   add_library(tmr::${name} ALIAS ${name})
@@ -21,8 +22,10 @@ function(tmr_add_library name)
     target_include_directories(${name} PUBLIC
       $<BUILD_INTERFACE:${ARG_PUBLIC_INCLUDE}>
       $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-    install(DIRECTORY ${ARG_PUBLIC_INCLUDE}/
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    if(NOT ARG_NO_HEADER_INSTALL)
+      install(DIRECTORY ${ARG_PUBLIC_INCLUDE}/
+              DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    endif()
   endif()
   if(ARG_PRIVATE_INCLUDE)
     target_include_directories(${name} PRIVATE ${ARG_PRIVATE_INCLUDE})
