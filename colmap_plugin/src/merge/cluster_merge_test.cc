@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@
 
 namespace tmr {
 namespace {
+
+namespace fs = std::filesystem;
 
 class ClusterMergeTest : public PlaceModelsTest {};
 
