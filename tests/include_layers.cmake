@@ -1,13 +1,15 @@
 # The folders of colmap_plugin in layers, lowest first: a file may include
 # its own folder, the folders below it, and the public headers
 # (tmr/colmap/*.h) of those folders; each public header belongs to the
-# folder that implements it. libtmr includes nothing of COLMAP. Fails with
+# folder that implements it. tools/ and tests/ include public headers only;
+# libtmr includes nothing of COLMAP. Fails with
 # every include that points the wrong way (docs/design.md).
 # Usage: cmake -DSOURCE_DIR=<project> -P include_layers.cmake
 cmake_minimum_required(VERSION 3.22)
 set(layers io synthetic sfm evaluation merge controllers)
 set(owner_match_consistency_options.h sfm)
 set(owner_model_evaluation.h evaluation)
+set(owner_model_refinement.h merge)
 set(owner_reconstruct_images.h controllers)
 set(owner_synthetic_scene.h synthetic)
 set(owner_synthetic_task_results.h controllers)
@@ -66,6 +68,19 @@ foreach(file IN LISTS files)
       string(APPEND errors "${file} includes ${CMAKE_MATCH_1}: "
                            "${included_layer} is above ${layer}\n")
     endif()
+  endforeach()
+endforeach()
+
+# Programs and integration tests use the public headers only.
+file(GLOB_RECURSE outside_files RELATIVE ${SOURCE_DIR}
+     ${SOURCE_DIR}/tools/*.h ${SOURCE_DIR}/tools/*.cc
+     ${SOURCE_DIR}/tests/*.h ${SOURCE_DIR}/tests/*.cc)
+list(FILTER outside_files EXCLUDE REGEX "^tests/include_layers_fixture/")
+foreach(file IN LISTS outside_files)
+  file(STRINGS ${SOURCE_DIR}/${file} lines
+       REGEX "^[ \t]*#[ \t]*include[ \t]*\"(${any_layer})/")
+  foreach(line IN LISTS lines)
+    string(APPEND errors "${file}: ${line} (colmap_plugin's private code)\n")
   endforeach()
 endforeach()
 
