@@ -60,11 +60,19 @@ function(tmr_add_test name)
   target_compile_options(${name} PRIVATE ${TMR_WARNING_FLAGS})
   target_include_directories(${name} PRIVATE ${ARG_INCLUDE})
   target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
-  set(labels ${ARG_LABELS} quick)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
-    PROPERTIES LABELS "${labels}"
     DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests writes a list-valued LABELS property out flat
+  # (LABELS a b), and ctest then drops b: the discovered tests
+  # (${name}_TESTS) are labelled by a file that ctest reads after gtest's.
+  set(labels ${ARG_LABELS} quick)
+  set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${labels_file}
+    "foreach(test IN LISTS ${name}_TESTS)\n"
+    "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${labels}\")\n"
+    "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
 endfunction()
 
 # tmr_label_by_duration(LONG test...): every test that add_test registered

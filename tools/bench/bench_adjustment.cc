@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::cout << "loaded: " << report.num_images << " images in "
-            << report.load_seconds << " s\n"
+            << report.load_seconds << " s, peak RSS " << report.load_peak_mib
+            << " MiB\n"
             << "refined in " << report.refine_seconds << " s, peak RSS "
             << PeakMiB() << " MiB, mean reprojection error "
             << report.mean_reprojection_error_px << " px\n"

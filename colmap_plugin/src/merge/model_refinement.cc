@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "tmr/colmap/model_refinement.h"
 
+#include <colmap/util/logging.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -31,6 +32,8 @@ bool RefineModel(const std::string& database_path,
                  const std::string& scratch_folder,
                  const ModelRefinementOptions& options,
                  ModelRefinementReport* report, std::string* error) {
+  THROW_CHECK_NOTNULL(report);
+  THROW_CHECK_NOTNULL(error);
   if (!options.Check(error)) return false;
   auto model = std::make_shared<colmap::Reconstruction>();
   try {
@@ -55,6 +58,7 @@ bool RefineModel(const std::string& database_path,
   *report = ModelRefinementReport();
   report->num_images = static_cast<int>(ids.size());
   report->load_seconds = SecondsSince(load_start);
+  report->load_peak_mib = ReadProcessMemory().peak_mib;
   colmap::IncrementalPipelineOptions mapper;
   mapper.num_threads = options.num_threads;
   MergedModelAdjustment adjustment;

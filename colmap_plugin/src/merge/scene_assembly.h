@@ -101,7 +101,7 @@ std::string DescribeFit(const ModelAlignment& alignment);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
-// (merge/model_merging.h) or by images registered on the scene's points
+// (merge/shared_track_alignment.h) or by images registered on the scene's points
 // (merge/registration_alignment.h), then COLMAP's mapper completes them
 // with the images no model holds, and maps from scratch what is still left
 // (the image-cluster models come from merge/cluster_merge.h). How two

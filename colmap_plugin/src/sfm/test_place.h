@@ -38,7 +38,9 @@ class PlaceModelsTest : public ::testing::Test {
   }
   static void TearDownTestSuite() {
     delete gt_;
+    gt_ = nullptr;
     delete cache_;
+    cache_ = nullptr;
     std::filesystem::remove_all(dir_);
   }
 

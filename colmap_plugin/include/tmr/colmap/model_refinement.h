@@ -22,6 +22,7 @@ struct ModelRefinementOptions {
 struct ModelRefinementReport {
   int num_images = 0;             // registered images refined
   double load_seconds = 0.0;      // the database's correspondences
+  double load_peak_mib = 0.0;     // the process's peak memory once loaded
   double refine_seconds = 0.0;    // re-linking, adjustment, filtering
   double mean_reprojection_error_px = 0.0;  // after
   std::string message;  // the adjustment's solver and Ceres' report
@@ -31,7 +32,8 @@ struct ModelRefinementReport {
 // registered images from the database (read-only, through a task database
 // in `scratch_folder`, removed after), then re-links its tracks, adjusts
 // and filters it (RefineMergedModel) and, unless `output_path` is empty,
-// writes it there. False with the reason in `error`.
+// writes it there. False with the reason in `error`. `report` and `error`
+// must not be null.
 bool RefineModel(const std::string& database_path,
                  const std::string& model_path, const std::string& output_path,
                  const std::string& scratch_folder,
