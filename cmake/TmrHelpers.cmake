@@ -5,12 +5,13 @@ set(TMR_WARNING_FLAGS -Wall -Wextra -Wno-unused-parameter)
 
 # tmr_add_library(NAME
 #   SRCS file...            sources
-#   PUBLIC_INCLUDE dir      public include directory (installed)
+#   PUBLIC_INCLUDE dir      public include directory (installed, unless
+#                           NO_HEADER_INSTALL: another target installs it)
 #   PRIVATE_INCLUDE dir...  private include directories
 #   PUBLIC_LINK lib...      dependencies that appear in public headers
 #   PRIVATE_LINK lib...)    implementation dependencies
 function(tmr_add_library name)
-  cmake_parse_arguments(ARG "" "PUBLIC_INCLUDE"
+  cmake_parse_arguments(ARG "NO_HEADER_INSTALL" "PUBLIC_INCLUDE"
                         "SRCS;PRIVATE_INCLUDE;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
   add_library(${name} ${ARG_SRCS})
   add_library(tmr::${name} ALIAS ${name})
@@ -21,8 +22,10 @@ function(tmr_add_library name)
     target_include_directories(${name} PUBLIC
       $<BUILD_INTERFACE:${ARG_PUBLIC_INCLUDE}>
       $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-    install(DIRECTORY ${ARG_PUBLIC_INCLUDE}/
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    if(NOT ARG_NO_HEADER_INSTALL)
+      install(DIRECTORY ${ARG_PUBLIC_INCLUDE}/
+              DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    endif()
   endif()
   if(ARG_PRIVATE_INCLUDE)
     target_include_directories(${name} PRIVATE ${ARG_PRIVATE_INCLUDE})
@@ -46,7 +49,8 @@ function(tmr_add_executable name)
 endfunction()
 
 # tmr_add_test(NAME SRCS file... LINK lib... [LABELS label...])
-# A GoogleTest executable whose tests are registered with ctest one by one.
+# A GoogleTest executable whose tests are registered with ctest one by one,
+# each labelled `quick` (docs/testing.md) besides LABELS.
 function(tmr_add_test name)
   if(NOT TMR_BUILD_TESTS)
     return()
@@ -58,8 +62,32 @@ function(tmr_add_test name)
   target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}"
     DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests writes a list-valued LABELS property out flat
+  # (LABELS a b), and ctest then drops b: the discovered tests
+  # (${name}_TESTS) are labelled by a file that ctest reads after gtest's.
+  set(labels ${ARG_LABELS} quick)
+  set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${labels_file}
+    "foreach(test IN LISTS ${name}_TESTS)\n"
+    "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${labels}\")\n"
+    "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
+endfunction()
+
+# tmr_label_by_duration(LONG test...): every test that add_test registered
+# in this directory gets the label `long` when it is one of LONG (or a
+# real-photo test, real_images.*), else `quick` (docs/testing.md).
+function(tmr_label_by_duration)
+  cmake_parse_arguments(ARG "" "" "LONG" ${ARGN})
+  get_property(tests DIRECTORY PROPERTY TESTS)
+  foreach(test IN LISTS tests)
+    if(test IN_LIST ARG_LONG OR test MATCHES "^real_images\\.")
+      set_property(TEST ${test} APPEND PROPERTY LABELS long)
+    else()
+      set_property(TEST ${test} APPEND PROPERTY LABELS quick)
+    endif()
+  endforeach()
 endfunction()
 
 # tmr_find_colmap(MIN_VERSION MODE): find_package(COLMAP) without a version

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The databases users bring (issue 24, item 3): the same photos in COLMAP
+// The databases users bring: the same photos in COLMAP
 // 3.8's schema (written by SQL here, with the zero matrices and identity
 // relative poses 3.x wrote where nothing was estimated) and in a COLMAP 4
 // database in WAL mode whose latest writes sit only in its -wal file give
@@ -11,6 +11,7 @@
 #include <colmap/scene/reconstruction.h>
 #include <colmap/scene/synthetic.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <sstream>
@@ -18,7 +19,7 @@
 #include <vector>
 
 #include "test_files.h"
-#include "test_scene.h"
+#include "tmr/colmap/synthetic_scene.h"
 #include "tmr/colmap/tmr_mapper.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/partition/tmr_tree.h"
@@ -79,9 +80,16 @@ class DatabaseSchemasTest : public ::testing::Test {
     options.cameras_per_place = 30;
     options.num_unlinked_places = 0;
     options.seed = 5;
+    // A folder of this process's own: ctest runs each test case as a
+    // process, side by side.
+    scene_ = new fs::path(fs::temp_directory_path() /
+                          ("tmr_schemas_" + std::to_string(getpid())));
+    fs::remove_all(*scene_);
     std::string error;
-    scene_ = new fs::path(WriteTestScene("schemas", options, &error));
-    ASSERT_FALSE(scene_->empty()) << error;
+    ASSERT_TRUE(WriteSyntheticScene(options, (*scene_ / "database.db").string(),
+                                    (*scene_ / "gt").string(), nullptr,
+                                    &error))
+        << error;
   }
   static void TearDownTestSuite() {
     fs::remove_all(*scene_);

@@ -1,5 +1,5 @@
 # Stock `colmap mapper` and tmr_mapper on a well-connected tmr_synth scene
-# whose parts share few tracks (issue 23): four plazas whose camera rings
+# whose parts share few tracks: four plazas whose camera rings
 # overlap, no link photos, detection 0.35 and matching that tolerates less
 # viewpoint change, so that clusters share points but few tracks. Scored by
 # tmr_eval:

@@ -102,7 +102,7 @@ int RowOf(const std::string& part, const std::vector<int>& rows) {
 }
 
 // Dense places of 40 to 200 photos chained by corridors of several lengths,
-// in two rows that only false pairs link (issue 25): every place has its own
+// in two rows that only false pairs link: every place has its own
 // kernel of at least the floor, its kernels' clusters hold its photos and
 // few of other places', and no cluster reaches across the rows.
 TEST(PartitionSynthetic, PlacesOfEverySizeInTwoRows) {

@@ -29,8 +29,8 @@ endif()
 # --forward_motion_share 1 on a copy of the database (its features and
 # matches are reused: only mapping runs): COLMAP's settings come first,
 # and a second mapping with the forward-motion settings follows only when
-# they register fewer than half the photos (session 28: 21 of 29, so no
-# second mapping).
+# they register fewer than half the photos (on this street they register
+# 21 of 29, so no second mapping).
 file(MAKE_DIRECTORY ${WORK_DIR}/general_first)
 file(COPY_FILE ${WORK_DIR}/database.db ${WORK_DIR}/general_first/database.db)
 run(${TMR_RECONSTRUCT} ${set_dir}/images ${WORK_DIR}/general_first

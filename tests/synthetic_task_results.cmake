@@ -1,5 +1,5 @@
 # The merge stage alone, on task results made from a scene's ground truth
-# (tmr_synth_tasks, issue 43): a city block of tmr_synth, `tmr_mapper
+# (tmr_synth_tasks): a city block of tmr_synth, `tmr_mapper
 # partition`, every task written from the ground truth with noise, `tmr_mapper
 # merge`. Scored by tmr_eval:
 # - one model holding every image, no wrong merge, median rotation error

@@ -1,7 +1,7 @@
-# The same database, options and --Tmr.seed give the same models (issue 24,
-# item 5): two tmr_mapper runs write byte-identical model files, model by
-# model, although the first runs two tasks at a time and the second one
-# after the other, so that tasks finish in another order and no task runs
+# The same database, options and --Tmr.seed give the same models: two
+# tmr_mapper runs write byte-identical model files, model by model, although
+# the first runs two tasks at a time and the second one after the other, so
+# that tasks finish in another order and no task runs
 # beside another (--Tmr.repeatable, the default, runs each COLMAP step on one
 # thread). CI saw a cluster merge come out differently when COLMAP's
 # alignment drew from the worker thread's unseeded generator

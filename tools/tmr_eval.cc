@@ -18,8 +18,8 @@
 
 #include "tmr/colmap/model_evaluation.h"
 
+#include "command_line.h"
 #include "drawing/top_view_picture.h"
-#include "tmr_options.h"
 
 namespace fs = std::filesystem;
 

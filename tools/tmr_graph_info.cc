@@ -11,7 +11,7 @@
 #include "tmr/scene/graph_summary.h"
 #include "tmr/scene/image_graph.h"
 
-#include "tmr_options.h"
+#include "command_line.h"
 
 namespace po = boost::program_options;
 

@@ -20,9 +20,11 @@
 #include <iostream>
 #include <map>
 
-#include "mapper_options.h"
+#include "command_line.h"
+#include "drawing/partition_picture.h"
+#include "progress_lines.h"
 #include "tmr/colmap/tmr_mapper.h"
-#include "tmr_options.h"
+#include "tmr/io/atomic_file.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
@@ -97,7 +99,9 @@ int PlanOrStatus(const std::string& stage, const tmr::TmrMapperOptions& o,
                       ? tmr::PlanTmrMapper(o, &plan, &error, progress)
                       : tmr::ReadTmrMapperPlan(o, &plan, &error);
   if (!ok) return Error(error);
-  if (stage == "partition" && !tmr::DrawMapperPartitionPicture(o))
+  if (stage == "partition" &&
+      !tmr::DrawRunPartitionPicture(o.database_path, o.match_graph,
+                                    o.output_path))
     progress("partition.png skipped: too many images to draw");
   std::cout << std::fixed << std::setprecision(0);
   for (const tmr::TmrMapperTask& t : plan.tasks) {
@@ -140,7 +144,8 @@ int RunOrMerge(const std::string& stage, const tmr::TmrMapperOptions& o,
                       ? tmr::MergeTmrMapper(o, &report, &error, progress)
                       : tmr::RunTmrMapper(o, &report, &error, progress);
   if (!ok) return Error(error);
-  if (stage == "run" && !tmr::DrawMapperPartitionPicture(o))
+  if (stage == "run" && !tmr::DrawRunPartitionPicture(
+                            o.database_path, o.match_graph, o.output_path))
     progress("partition.png skipped: too many images to draw");
   std::cout << "tmr_mapper: " << report.num_images << " images, "
             << report.model_sizes.size() << " models (registered:";

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <iostream>
 
+#include "command_line.h"
 #include "drawing/partition_picture.h"
 #include "tmr/io/database_reader.h"
-#include "tmr_options.h"
+#include "tmr/partition/tmr_tree.h"
+#include "tree_summary.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;

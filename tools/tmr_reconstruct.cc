@@ -8,10 +8,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "mapper_options.h"
+#include "command_line.h"
+#include "drawing/partition_picture.h"
+#include "progress_lines.h"
 #include "tmr/colmap/reconstruct_images.h"
 #include "tmr/io/atomic_file.h"
-#include "tmr_options.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
@@ -53,7 +54,8 @@ int main(int argc, char** argv) {
     tmr::WriteFileAtomically(
         (fs::path(mapper.output_path) / "project.ini").string(),
         tmr::ProjectIni(desc, vm));
-    tmr::DrawMapperPartitionPicture(mapper);
+    tmr::DrawRunPartitionPicture(mapper.database_path, mapper.match_graph,
+                                 mapper.output_path);
   } catch (const std::exception& e) {
     std::cerr << "tmr_reconstruct: error: " << e.what() << "\n";
     return 1;

@@ -10,7 +10,7 @@
 
 #include "tmr/colmap/synthetic_scene.h"
 
-#include "tmr_options.h"
+#include "command_line.h"
 
 namespace po = boost::program_options;
 

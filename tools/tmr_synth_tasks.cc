@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "mapper_options.h"
+#include "command_line.h"
+#include "progress_lines.h"
 #include "tmr/colmap/synthetic_task_results.h"
-#include "tmr_options.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Merge-stage benchmark (issue 43): tmr_mapper's merge stage alone, on task
+# Merge-stage benchmark: tmr_mapper's merge stage alone, on task
 # results generated from a scene's ground truth (tmr_synth_tasks: every
 # kernel and leaf model with noisy poses and points, each in a frame of its
 # own), so that its time and memory can be measured at sizes where running

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Real-photo benchmark (issue 6): stock `colmap mapper` and tmr_mapper on the
+# Real-photo benchmark: stock `colmap mapper` and tmr_mapper on the
 # same database of each photo set in ../shared/data, and the paper's Sec. 6.2
 # experiment on a real sequence.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Photos to models (issue 27): tmr_reconstruct against the stock pipeline,
+# Photos to models: tmr_reconstruct against the stock pipeline,
 # `colmap automatic_reconstructor` of the same COLMAP build (sparse only,
 # CPU, its default quality "high", exhaustive matching below 200 photos),
 # on every photo set of ../shared/data, one after the other, with the same

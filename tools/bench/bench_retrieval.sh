@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Matching thousands of unordered photos (issue 27): tmr_reconstruct with
+# Matching thousands of unordered photos: tmr_reconstruct with
 # retrieval matching (a vocabulary built from the photos' own features,
 # each photo with its 30 most similar) on sets of 200 to 2,000 photos, and
 # with exhaustive matching of the same features where that is affordable.

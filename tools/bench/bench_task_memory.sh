@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Task-memory benchmark (issue 43): the peak memory of kernel and leaf tasks
+# Task-memory benchmark: the peak memory of kernel and leaf tasks
 # against what the plan expects of them (`tmr_mapper status`'s last column,
 # controllers/memory_budget.h). Per scene (as bench_mapper.sh names them,
 # kept in out/bench_mapper/SCENE): `tmr_mapper partition`, then the largest

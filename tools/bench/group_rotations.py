@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Rotation error of each group of a merge stage by parts (issue 43): for RUN
+# Rotation error of each group of a merge stage by parts: for RUN
 # (an output folder of tmr_mapper with plan.txt, tree.json and model 0) and
 # GT (the ground-truth model), how far each group's photos sit from the
 # common frame (the join's error) and from their own group's mean rotation

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Calibration of the kernel check (issue 27) on real photos: what share of
+# Calibration of the kernel check on real photos: what share of
 # the verified matches, and how many image pairs, does a correct model
 # contradict (CheckMatchConsistency, `tmr_eval --database_path`), and what
 # does a wrong one? Reads the workspaces of tools/bench/bench_reconstruct.sh
@@ -32,7 +32,7 @@ echo "set,model,images,matches,low_angle_share,inconsistent_share_all,inconsiste
 
 # check SET NAME MODEL DATABASE GT: one row, with the check's default
 # triangulation angle and third-view confirmation, and with every match tested
-# (angle 0, third view not required: before session 27).
+# (angle 0, third view not required).
 check() {
   local json="$OUT/$1/$2.json"
   # Without ground truth the model is its own reference (counts only).

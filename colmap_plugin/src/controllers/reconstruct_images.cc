@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "controllers/controller_progress.h"
+#include "controllers/forward_motion_options.h"
 #include "controllers/photo_extraction.h"
 #include "controllers/photo_matching.h"
 #include "sfm/forward_motion.h"

@@ -15,6 +15,7 @@
 #include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "io/model_files.h"
 #include "io/task_database.h"
 #include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"
@@ -290,8 +291,8 @@ bool TmrMapperStages::MergeGroup(int g, int num_threads, const Record& record,
   for (auto& part : PartModels(&group.kernels)) models.push_back(part);
   std::vector<std::string> names;
   for (const int i : images) names.push_back(tree_.image_names.at(i));
-  const SceneAssembler assembler(o_, cache, work_.GroupDatabase(g), names,
-                                 num_threads, group_record);
+  const SceneAssembler assembler(AssemblyOptions(o_, num_threads), cache,
+                                 work_.GroupDatabase(g), names, group_record);
   const auto scenes = assembler.Assemble(models, /*drop_small_models=*/false);
   const fs::path folder(work_.GroupModels(g));
   std::error_code ec;

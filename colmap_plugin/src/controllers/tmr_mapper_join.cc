@@ -65,8 +65,9 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   std::vector<JoinedScene> joined;
   std::vector<TmrWeakLink> weak_links;
   {
-    const SceneAssembler assembler(o_, std::move(cache), work_.JoinDatabase(),
-                                   tree_.image_names, num_threads, record);
+    const SceneAssembler assembler(AssemblyOptions(o_, num_threads),
+                                   std::move(cache), work_.JoinDatabase(),
+                                   tree_.image_names, record);
     joined = assembler.Join(std::move(light));
     std::vector<std::shared_ptr<colmap::Reconstruction>> scenes;
     for (JoinedScene& scene : joined) scenes.push_back(std::move(scene.model));

@@ -8,6 +8,7 @@
 
 #include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
+#include "io/model_files.h"
 #include "merge/cluster_merge.h"
 #include "merge/scene_assembly.h"
 #include "tmr/io/atomic_file.h"
@@ -82,8 +83,9 @@ bool TmrMapperStages::AssembleAndWrite(
     const Record& record, const Progress& progress, TmrMapperReport* report,
     std::string* error) const {
   for (auto& part : PartModels()) models.push_back(std::move(part));
-  const SceneAssembler assembler(o_, std::move(cache), work_.MergeDatabase(),
-                                 tree_.image_names, num_threads, record);
+  const SceneAssembler assembler(AssemblyOptions(o_, num_threads),
+                                 std::move(cache), work_.MergeDatabase(),
+                                 tree_.image_names, record);
   const std::vector<std::shared_ptr<colmap::Reconstruction>> scenes =
       assembler.Assemble(models);
   return WriteScenes(scenes, assembler, progress, report, error);

@@ -3,6 +3,7 @@
 // their conversion to COLMAP's options.
 #include "controllers/tmr_mapper_options.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace tmr {
@@ -194,6 +195,24 @@ MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
   else
     adjustment.max_refinements = options.mapper.ba_global_max_refinements;
   return adjustment;
+}
+
+SceneAssemblyOptions AssemblyOptions(const TmrMapperOptions& options,
+                                     int num_threads) {
+  SceneAssemblyOptions o;
+  o.mapper = ColmapOptions(options, num_threads);
+  o.growing_adjustment = MergedAdjustment(options, /*while_merging=*/true);
+  o.merged_adjustment = MergedAdjustment(options, /*while_merging=*/false);
+  o.min_shared_tracks = options.merge.min_shared_tracks;
+  o.register_images = options.merge.register_images;
+  o.seed = static_cast<unsigned>(options.tree.seed);
+  o.align_all_at_once = options.merge.align_all_at_once;
+  o.complete_models = options.merge.complete_models;
+  o.refinement_growth = options.refinement.growth;
+  o.parallel_block_images =
+      static_cast<size_t>(std::max(0, options.refinement.parallel_block_images));
+  o.num_threads = num_threads;
+  return o;
 }
 
 }  // namespace tmr

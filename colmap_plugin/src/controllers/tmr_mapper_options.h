@@ -5,7 +5,8 @@
 
 #include <colmap/controllers/incremental_pipeline.h>
 
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/scene_assembly.h"
 #include "tmr/colmap/tmr_mapper.h"
 
 namespace tmr {
@@ -26,5 +27,10 @@ colmap::IncrementalPipelineOptions ColmapOptions(
 // (merge_refine_points_per_image).
 MergedModelAdjustment MergedAdjustment(const TmrMapperOptions& options,
                                        bool while_merging);
+
+// SceneAssembler's options (merge/scene_assembly.h) from tmr_mapper's, on
+// `num_threads` workers.
+SceneAssemblyOptions AssemblyOptions(const TmrMapperOptions& options,
+                                     int num_threads);
 
 }  // namespace tmr

@@ -13,6 +13,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "io/model_files.h"
 #include "io/task_database.h"
 #include "sfm/match_consistency.h"
 
@@ -121,23 +122,6 @@ bool ModelEvaluationOptions::Check(std::string* error) const {
   if (min_wrong_merge_images < 3)
     return fail("min_wrong_merge_images must be >= 3");
   return match_consistency.Check(error);
-}
-
-colmap::Reconstruction ReadModel(const std::string& path) {
-  namespace fs = std::filesystem;
-  const bool binary = fs::exists(fs::path(path) / "images.bin");
-  const bool text = fs::exists(fs::path(path) / "images.txt");
-  if (!binary && !text) {
-    throw std::runtime_error(
-        "'" + path + "' is not a COLMAP model (no images.bin or images.txt)");
-  }
-  colmap::Reconstruction reconstruction;
-  try {
-    reconstruction.Read(path);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("cannot read model '" + path + "': " + e.what());
-  }
-  return reconstruction;
 }
 
 ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,

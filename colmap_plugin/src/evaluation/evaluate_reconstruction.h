@@ -12,7 +12,4 @@ ModelEvaluation EvaluateReconstruction(const colmap::Reconstruction& reference,
                                        const colmap::Reconstruction& model,
                                        const ModelEvaluationOptions& options);
 
-// Reads a COLMAP model folder (binary or text); throws std::runtime_error.
-colmap::Reconstruction ReadModel(const std::string& path);
-
 }  // namespace tmr

@@ -4,6 +4,8 @@
 #include <colmap/estimators/alignment.h>
 #include <colmap/math/random.h>
 
+#include "sfm/model_edits.h"
+
 namespace tmr {
 
 ClusterMerge MergeLeafModels(const std::string& kernel_model,

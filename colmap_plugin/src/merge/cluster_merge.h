@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/shared_track_alignment.h"
 
 namespace tmr {
 

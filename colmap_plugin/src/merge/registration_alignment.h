@@ -4,7 +4,7 @@
 #include <colmap/scene/correspondence_graph.h>
 #include <colmap/scene/reconstruction.h>
 
-#include "merge/model_merging.h"
+#include "merge/shared_track_alignment.h"
 
 namespace tmr {
 

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <unordered_set>
 
-#include "controllers/tmr_mapper_options.h"
-#include "merge/model_merging.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/model_alignment.h"
 #include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 
@@ -55,15 +55,14 @@ void SortBySize(std::vector<AssemblyScene>* scenes) {
 }
 
 SceneAssembler::SceneAssembler(
-    const TmrMapperOptions& options,
+    SceneAssemblyOptions options,
     std::shared_ptr<const colmap::DatabaseCache> cache,
     std::string merge_database, std::vector<std::string> image_names,
-    int num_threads, std::function<void(const TmrTaskReport&)> record)
-    : o_(options),
+    std::function<void(const TmrTaskReport&)> record)
+    : o_(std::move(options)),
       cache_(std::move(cache)),
       merge_database_(std::move(merge_database)),
       image_names_(std::move(image_names)),
-      num_threads_(num_threads),
       record_(std::move(record)) {
   for (const auto& [pair_id, num_correspondences] :
        cache_->CorrespondenceGraph()->NumMatchesBetweenAllImages()) {
@@ -82,14 +81,14 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
     scenes.push_back({model, false, model->NumRegImages(), {}});
   // Links the averaging refused get their second try against the refined
   // scenes, below.
-  if (o_.merge.align_all_at_once) AlignAllScenes(&scenes);
+  if (o_.align_all_at_once) AlignAllScenes(&scenes);
   // Every later step takes each image to be in one model: the halo images
   // that no merge above joined keep the copy with the most points.
   std::vector<colmap::Reconstruction*> models_now;
   for (AssemblyScene& scene : scenes) models_now.push_back(scene.model.get());
   KeepOneCopyOfEachImage(models_now);
-  if (!o_.merge.align_all_at_once) MergeScenes(&scenes);
-  if (o_.merge.complete_models) {
+  if (!o_.align_all_at_once) MergeScenes(&scenes);
+  if (o_.complete_models) {
     CompleteScenes(&scenes);
     // New models from what is left may overlap the others.
     if (ReconstructLeftovers(&scenes)) MergeScenes(&scenes);
@@ -108,7 +107,7 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   // points that photos left out before can register on (tmr_synth plazas of
   // 960: 4 photos of a plaza whose neighbours joined by the last merges;
   // `colmap image_registrator` registered them on the final model).
-  if (o_.merge.complete_models) {
+  if (o_.complete_models) {
     HoldImages(&scenes);
     CompleteScenes(&scenes, /*keep_unless_grown=*/true);
     RefineLateMerges(&scenes);
@@ -156,7 +155,7 @@ void SceneAssembler::DropSmallModels(Scenes* scenes) const {
 
 size_t SceneAssembler::MinModelSize() const {
   return std::min<size_t>(static_cast<size_t>(0.8 * image_names_.size()),
-                          o_.mapper.min_model_size);
+                          static_cast<size_t>(o_.mapper.min_model_size));
 }
 
 void SceneAssembler::MergeScenes(Scenes* scenes) const {
@@ -176,7 +175,7 @@ void SceneAssembler::MergeScenes(Scenes* scenes) const {
       // lengths ended far away). Where models are completed, its photos are
       // registered one by one instead (CompleteScenes).
       const bool too_small =
-          o_.merge.complete_models && model.NumRegImages() < MinModelSize();
+          o_.complete_models && model.NumRegImages() < MinModelSize();
       for (const int s :
            too_small ? std::vector<int>() : LinkedScenes(model, next)) {
         AssemblyScene& scene = next[s];
@@ -200,7 +199,7 @@ void SceneAssembler::MergeScenes(Scenes* scenes) const {
         record_(task);
         if (a.success) {
           if (scene.model->NumRegImages() >=
-              o_.refinement.growth * scene.refined_size)
+              o_.refinement_growth * scene.refined_size)
             Refine(&scene, /*while_merging=*/true);
           joined = merged = true;
           break;
@@ -236,17 +235,18 @@ void SceneAssembler::Refine(
     AssemblyScene* scene, bool while_merging,
     const std::vector<colmap::image_t>& only_images) const {
   const auto start = Clock::now();
-  MergedModelAdjustment adjustment = MergedAdjustment(o_, while_merging);
+  MergedModelAdjustment adjustment =
+      while_merging ? o_.growing_adjustment : o_.merged_adjustment;
   adjustment.only_images = only_images;
   adjustment.adjust_after_last_change = !while_merging && only_images.empty();
   // A scene merged at once was adjusted on its longest tracks first
   // (AlignAllScenes).
-  if (!while_merging && o_.merge.align_all_at_once) {
-    adjustment.parallel_block_images = o_.refinement.parallel_block_images;
-    adjustment.num_workers = num_threads_;
+  if (!while_merging && o_.align_all_at_once) {
+    adjustment.parallel_block_images = o_.parallel_block_images;
+    adjustment.num_workers = o_.num_threads;
   }
   const MergedModelRefinement refinement = RefineMergedModel(
-      cache_, ColmapOptions(o_, num_threads_), adjustment, scene->model);
+      cache_, o_.mapper, adjustment, scene->model);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->model->NumRegImages());
   const bool full =

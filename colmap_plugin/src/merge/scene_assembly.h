@@ -13,10 +13,42 @@
 #include <unordered_set>
 #include <vector>
 
-#include "merge/model_merging.h"
-#include "tmr/colmap/tmr_mapper.h"
+#include "merge/merged_model_refinement.h"
+#include "merge/shared_track_alignment.h"
+#include "sfm/model_edits.h"
+#include "tmr/colmap/task_report.h"
 
 namespace tmr {
+
+// What SceneAssembler takes of tmr_mapper's options, already turned into
+// COLMAP's where COLMAP runs (filled by AssemblyOptions,
+// controllers/tmr_mapper_options.h).
+struct SceneAssemblyOptions {
+  // COLMAP's mapper options for completion, leftovers and refinement: also
+  // the smallest model kept (min_model_size) and the inliers that
+  // registering an image needs (mapper.abs_pose_min_num_inliers).
+  colmap::IncrementalPipelineOptions mapper;
+  // The adjustment of a scene while it grows (on its longest tracks), and
+  // that of a merged scene.
+  MergedModelAdjustment growing_adjustment;
+  MergedModelAdjustment merged_adjustment;
+  // The alignment rules: shared tracks needed (tau), images registered on
+  // the other model's points (0: that rule off), their RANSAC's seed.
+  int min_shared_tracks = 0;
+  int register_images = 0;
+  unsigned seed = 0;
+  // Every linked pair aligned at once (AlignAllScenes) or scene by scene
+  // (MergeScenes); completion of the scenes with the images no model
+  // holds; a growing scene's size between two of its adjustments, as a
+  // share of its last adjusted size; a merged scene's blocks adjusted side
+  // by side (0: none).
+  bool align_all_at_once = false;
+  bool complete_models = false;
+  double refinement_growth = 0;
+  size_t parallel_block_images = 0;
+  // Workers: linked pairs aligned at once, blocks adjusted side by side.
+  int num_threads = 1;
+};
 
 // Takes out of `scene` the images registered since `before` that see fewer
 // than `min_anchored` points also seen by an image of `before`: an image
@@ -69,7 +101,7 @@ std::string DescribeFit(const ModelAlignment& alignment);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
-// (merge/model_merging.h) or by images registered on the scene's points
+// (merge/shared_track_alignment.h) or by images registered on the scene's points
 // (merge/registration_alignment.h), then COLMAP's mapper completes them
 // with the images no model holds, and maps from scratch what is still left
 // (the image-cluster models come from merge/cluster_merge.h). How two
@@ -84,18 +116,18 @@ class SceneAssembler {
   // `merge_database`: a task database of all images (COLMAP's controller
   // reads a path); `cache`: its correspondences, loaded once; `record`
   // receives every step for the report.
-  SceneAssembler(const TmrMapperOptions& options,
+  SceneAssembler(SceneAssemblyOptions options,
                  std::shared_ptr<const colmap::DatabaseCache> cache,
                  std::string merge_database,
-                 std::vector<std::string> image_names, int num_threads,
+                 std::vector<std::string> image_names,
                  std::function<void(const TmrTaskReport&)> record);
 
   // The whole last stage: AlignAllScenes (or, without
-  // options.merge.align_all_at_once, MergeScenes), CompleteScenes,
+  // options.align_all_at_once, MergeScenes), CompleteScenes,
   // ReconstructLeftovers
-  // (the last two when options.merge.complete_models), RefineMergedScenes,
+  // (the last two when options.complete_models), RefineMergedScenes,
   // then MergeScenes once more on the refined scenes and RefineLateMerges,
-  // and (options.merge.complete_models) CompleteScenes on the refined
+  // and (options.complete_models) CompleteScenes on the refined
   // scenes with RefineLateMerges of the images it added. Returns the scene
   // models, largest first; with `drop_small_models`, without the models
   // below MinModelSize when there are several (as COLMAP's mapper).
@@ -125,17 +157,17 @@ class SceneAssembler {
   // Each model joins the first scene it aligns with (Align), the scenes
   // tried in order of the verified matches between them and the model,
   // those without any skipped, until nothing merges; leaves the scenes
-  // largest first. With options.merge.complete_models, a model below
+  // largest first. With options.complete_models, a model below
   // MinModelSize stays apart: CompleteScenes registers its photos one by
   // one. A scene is refined (Refine) whenever it has grown by
-  // options.refinement.growth since its last global adjustment, as COLMAP's
+  // options.refinement_growth since its last global adjustment, as COLMAP's
   // mapper refines a model grown by 10%: parts appended one after another
   // around a city's loops drift apart, later parts then fit only in
   // places, and one adjustment at the end starts too far off
   // (docs/mapper.md, step 4). Between those, merges add no adjustment: one
   // per merge would cost far more.
   void MergeScenes(Scenes* scenes) const;
-  // MergeScenes' first pass with options.merge.align_all_at_once: every
+  // MergeScenes' first pass with options.align_all_at_once: every
   // pair of linked models (those of at least MinModelSize images where
   // models are completed) aligned by Align, in parallel; one similarity
   // averaging of those alignments (AverageSimilarities); each connected
@@ -194,7 +226,7 @@ class SceneAssembler {
   // The scene merge of `model` into `scene`: the shared-track rule
   // (AlignModelsBySharedTracks), and where it refuses, images of the model
   // registered on the scene's points (AlignModelsByRegisteredImages, with
-  // options.merge.register_images). On refusal the reason names both.
+  // options.register_images). On refusal the reason names both.
   // With `images_first`, the images' rule is tried first: it aligns on the
   // poses of the images both models hold, which fix the rotation better
   // than the tracks of a seam.
@@ -217,11 +249,10 @@ class SceneAssembler {
       const colmap::Reconstruction& model,
       const std::vector<const colmap::Reconstruction*>& scenes) const;
 
-  const TmrMapperOptions& o_;
+  const SceneAssemblyOptions o_;
   std::shared_ptr<const colmap::DatabaseCache> cache_;
   std::string merge_database_;
   std::vector<std::string> image_names_;
-  int num_threads_;
   std::function<void(const TmrTaskReport&)> record_;
   // Verified pairs of each image: partner and number of correspondences.
   std::unordered_map<colmap::image_t,

@@ -1,5 +1,5 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The scene assembly's first pass (issue 42, item 2): every pair of linked
+// The scene assembly's first pass: every pair of linked
 // models aligned at once, in parallel, then one similarity averaging over
 // the graph of models, and each connected part appended into its largest
 // model without adjustment between.
@@ -131,6 +131,43 @@ std::vector<TmrTaskReport> LinkRows(
   return rows;
 }
 
+// Keeps one copy of each image that the first n scenes share (halos), then
+// appends each of those scenes that is not its part's root (placed.part)
+// into the root, moved by its placement, with its join pieces. Returns the
+// number of parts, and in *num_copies the copies taken out.
+int AppendIntoParts(const SimilarityAveraging& placed, int n,
+                    std::vector<AssemblyScene>* scenes, int* num_copies) {
+  std::vector<colmap::Reconstruction*> editable;
+  for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
+  std::vector<std::vector<colmap::image_t>> dropped;
+  *num_copies = KeepOneCopyOfEachImage(editable, &dropped);
+  for (int m = 0; m < n; ++m) {
+    std::vector<JoinPiece>& pieces = (*scenes)[m].pieces;
+    if (!pieces.empty()) {  // a join's model, as it entered
+      THROW_CHECK_EQ(pieces.size(), 1);
+      pieces[0].dropped_images = std::move(dropped[m]);
+    }
+  }
+  int num_parts = 0;
+  for (int m = 0; m < n; ++m) {
+    const int root = placed.part[m];
+    if (root == m) {
+      ++num_parts;
+      continue;
+    }
+    AppendReconstruction(*(*scenes)[m].model, placed.part_from_model[m],
+                         (*scenes)[root].model.get());
+    for (JoinPiece& piece : (*scenes)[m].pieces) {
+      piece.scene_from_model =
+          placed.part_from_model[m] * piece.scene_from_model;
+      (*scenes)[root].pieces.push_back(std::move(piece));
+    }
+    (*scenes)[root].unrefined = true;
+    (*scenes)[m].model.reset();  // freed here unless the caller holds it
+  }
+  return num_parts;
+}
+
 }  // namespace
 
 void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
@@ -140,7 +177,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   // left to CompleteScenes; a join has no completion after it, and the
   // images a small model shares with another group's hold it.
   const size_t min_size =
-      o_.merge.complete_models && !joining ? MinModelSize() : 0;
+      o_.complete_models && !joining ? MinModelSize() : 0;
   std::vector<const colmap::Reconstruction*> models;
   int num_images = 0;
   for (const AssemblyScene& scene : *scenes) {
@@ -158,7 +195,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   std::vector<ModelAlignment> alignments(keys.size());
   std::vector<double> seconds(keys.size());
   {
-    colmap::ThreadPool pool(std::max(1, num_threads_));
+    colmap::ThreadPool pool(std::max(1, o_.num_threads));
     for (size_t p = 0; p < keys.size(); ++p) {
       pool.AddTask([&, p] {
         const auto pair_start = Clock::now();
@@ -189,34 +226,8 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
       LinkRows(models, keys, alignments, seconds, link_pair, placed);
   // Images that several models register (halos) keep one copy, then each
   // part is appended into its first (largest) model, in one frame.
-  std::vector<colmap::Reconstruction*> editable;
-  for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
-  std::vector<std::vector<colmap::image_t>> dropped;
-  const int num_copies = KeepOneCopyOfEachImage(editable, &dropped);
-  int num_parts = 0;
-  for (int m = 0; m < n; ++m) {
-    std::vector<JoinPiece>& pieces = (*scenes)[m].pieces;
-    if (!pieces.empty()) {  // a join's model, as it entered
-      THROW_CHECK_EQ(pieces.size(), 1);
-      pieces[0].dropped_images = std::move(dropped[m]);
-    }
-  }
-  for (int m = 0; m < n; ++m) {
-    const int root = placed.part[m];
-    if (root == m) {
-      ++num_parts;
-      continue;
-    }
-    AppendReconstruction(*models[m], placed.part_from_model[m],
-                         (*scenes)[root].model.get());
-    for (JoinPiece& piece : (*scenes)[m].pieces) {
-      piece.scene_from_model =
-          placed.part_from_model[m] * piece.scene_from_model;
-      (*scenes)[root].pieces.push_back(std::move(piece));
-    }
-    (*scenes)[root].unrefined = true;
-    (*scenes)[m].model.reset();  // freed here unless the caller holds it
-  }
+  int num_copies = 0;
+  const int num_parts = AppendIntoParts(placed, n, scenes, &num_copies);
   const int num_held = static_cast<int>(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));
   record_({"align " + std::to_string(keys.size()) + " linked pairs of " +

@@ -13,7 +13,6 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "controllers/tmr_mapper_options.h"
 #include "merge/scene_assembly.h"
 #include "sfm/reconstruction_task.h"
 #include "tmr/util/process.h"
@@ -41,8 +40,7 @@ std::unordered_set<std::string> HeldImageNames(
 // matched to keypoints of images in `before`. Only they can see that many
 // points of the scene before completion (RemoveUnanchoredImages); any other
 // image completion registers is placed on points that images registered
-// after it triangulated, and is taken out again. On plazas8 completion
-// registered 1,205 such images one by one before taking them out (issue 42).
+// after it triangulated, and is taken out again.
 std::unordered_set<colmap::image_t> ImagesMatchedToScene(
     const colmap::DatabaseCache& cache,
     const std::unordered_map<colmap::image_t,
@@ -111,7 +109,7 @@ int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
 void SceneAssembler::CompleteScenes(Scenes* scenes,
                                     bool keep_unless_grown) const {
   SortBySize(scenes);
-  const auto colmap_options = ColmapOptions(o_, num_threads_);
+  const colmap::IncrementalPipelineOptions& colmap_options = o_.mapper;
   const colmap::IncrementalMapper::Options options = colmap_options.Mapper();
   const auto triangulation = colmap_options.Triangulation();
   const auto local_ba = colmap_options.LocalBundleAdjustment();
@@ -215,7 +213,7 @@ bool SceneAssembler::ReconstructLeftovers(Scenes* scenes) const {
   const auto start = Clock::now();
   const auto held = HeldImageNames(*scenes);
   auto options = std::make_shared<colmap::IncrementalPipelineOptions>(
-      ColmapOptions(o_, num_threads_));
+      o_.mapper);
   options->extract_colors = false;
   for (const std::string& name : image_names_) {
     if (!held.count(name)) options->image_names.push_back(name);

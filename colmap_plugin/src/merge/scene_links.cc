@@ -51,20 +51,20 @@ ModelAlignment SceneAssembler::Align(const colmap::Reconstruction& scene,
                                      bool images_first) const {
   const colmap::CorrespondenceGraph& graph = *cache_->CorrespondenceGraph();
   RegistrationAlignmentOptions registration;
-  registration.max_images = o_.merge.register_images;
-  registration.min_num_inliers = o_.mapper.abs_pose_min_num_inliers;
-  registration.seed = static_cast<unsigned>(o_.tree.seed);
-  if (images_first && o_.merge.register_images > 0) {
+  registration.max_images = o_.register_images;
+  registration.min_num_inliers = o_.mapper.mapper.abs_pose_min_num_inliers;
+  registration.seed = o_.seed;
+  if (images_first && o_.register_images > 0) {
     const ModelAlignment by_images =
         AlignModelsByRegisteredImages(scene, model, graph, registration);
     if (by_images.success) return by_images;
   }
   ModelAlignmentOptions tracks;
-  tracks.min_shared_tracks = o_.merge.min_shared_tracks;
+  tracks.min_shared_tracks = o_.min_shared_tracks;
   tracks.seed = registration.seed;
   const ModelAlignment by_tracks =
       AlignModelsBySharedTracks(scene, model, graph, tracks);
-  if (by_tracks.success || o_.merge.register_images == 0) return by_tracks;
+  if (by_tracks.success || o_.register_images == 0) return by_tracks;
   ModelAlignment by_images =
       AlignModelsByRegisteredImages(scene, model, graph, registration);
   if (!by_images.success) {

@@ -60,8 +60,7 @@ struct SimilarityAveraging {
 };
 
 // Places every model of a graph of pairwise similarities in one frame per
-// connected part (the similarity averaging of issue 42, item 2; the
-// paper's merges are pairwise, Sec. 5). First, loop consistency on
+// connected part (the paper's merges are pairwise, Sec. 5). First, loop consistency on
 // triangles of links: a link that disagrees with more triangles through it
 // than agree is refused, the worst first (a wrong link breaks every loop it
 // closes, a right one only the loops that hold a wrong link). Then a

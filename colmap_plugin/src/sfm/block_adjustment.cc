@@ -272,7 +272,7 @@ std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,
                            colmap::Reconstruction* model) {
   // Long tracks tie the model together; 500 per image came within 0.003
-  // deg of the whole adjustment (docs/benchmarks.md, "Session 8").
+  // deg of the whole adjustment (docs/benchmarks.md).
   constexpr size_t kGlobalPointsPerImage = 500;
   std::ostringstream report;
   report << AdjustOnLongestTracks(options, kGlobalPointsPerImage, model);

@@ -93,7 +93,7 @@ std::string AdjustOnLongestTracks(
 // pass over blocks of at most max_block_images (CovisibleImageBlocks), each
 // adjusted with all its points (AdjustBlock), which fits the points left
 // out of step 1 and the fine detail. Block passes alone converge slowly on
-// the large-scale shape (docs/benchmarks.md, "Session 8"). Returns a
+// the large-scale shape (docs/benchmarks.md). Returns a
 // one-line report.
 std::string AdjustByBlocks(const colmap::BundleAdjustmentOptions& options,
                            size_t max_block_images,

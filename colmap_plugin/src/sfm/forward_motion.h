@@ -3,8 +3,6 @@
 
 #include <colmap/scene/database.h>
 
-#include "tmr/colmap/tmr_mapper.h"
-
 namespace tmr {
 
 // How the verified pairs of a database move: photos taken walking or
@@ -32,16 +30,5 @@ struct ForwardMotionStats {
 // length and principal point; distortion is ignored).
 ForwardMotionStats MeasureForwardMotion(const colmap::Database& database,
                                         double max_forward_motion);
-
-// COLMAP's mapper options for photos taken moving straight ahead
-// (docs/reconstruct.md, "Photos taken walking straight ahead"): the
-// initial pair may move forward and see its points under 2 degrees, points
-// are triangulated and kept down to 0.5 degrees, and with `keep_intrinsics`
-// (every camera has an EXIF focal length) the focal length and distortion
-// stay at their priors, which forward motion cannot tell from depth.
-// Options that differ from COLMAP's defaults in `options` (set by the
-// user) are kept.
-MapperPassThroughOptions ForwardMotionMapperOptions(
-    const MapperPassThroughOptions& options, bool keep_intrinsics);
 
 }  // namespace tmr

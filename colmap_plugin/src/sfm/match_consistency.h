@@ -4,7 +4,7 @@
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction.h>
 
-#include "tmr/colmap/match_consistency.h"
+#include "tmr/colmap/match_consistency_options.h"
 
 namespace tmr {
 

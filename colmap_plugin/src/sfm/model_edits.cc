@@ -1,7 +1,9 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/model_edits.h"
 
+#include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -106,6 +108,39 @@ void MakeSeamModel(const colmap::Reconstruction& model,
       if (seam_images.count(element.image_id)) cut.track.AddElement(element);
     }
     if (cut.track.Length() > 0) seam->AddPoint3D(point_id, std::move(cut));
+  }
+}
+
+void AppendReconstruction(const colmap::Reconstruction& source,
+                          const colmap::Sim3d& target_from_source,
+                          colmap::Reconstruction* target) {
+  colmap::Reconstruction moved = source;
+  moved.Transform(target_from_source);
+  std::unordered_set<colmap::image_t> added;
+  for (const colmap::image_t image_id : moved.RegImageIds()) {
+    const colmap::Image& image = moved.Image(image_id);
+    if (target->ExistsImage(image_id)) {
+      // A model a mapper has continued holds every image of the database,
+      // most unregistered; such an image takes the source's pose.
+      const colmap::Image& held = target->Image(image_id);
+      if (held.HasPose()) continue;
+      if (held.NumPoints2D() != image.NumPoints2D())
+        throw std::logic_error(
+            "AppendReconstruction: the models disagree on "
+            "the keypoints of " +
+            image.Name());
+      SetPoseAndRegister(image_id, image.CamFromWorld(), target);
+    } else {
+      AddImageWithoutPoints(moved, image_id, image.CamFromWorld(), target);
+    }
+    added.insert(image_id);
+  }
+  for (const auto& [point_id, point] : moved.Points3D()) {
+    colmap::Track track;
+    for (const colmap::TrackElement& el : point.track.Elements()) {
+      if (added.count(el.image_id)) track.AddElement(el);
+    }
+    if (track.Length() >= 2) target->AddPoint3D(point.xyz, track, point.color);
   }
 }
 

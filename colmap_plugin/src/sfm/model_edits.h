@@ -3,6 +3,7 @@
 // Edits of a COLMAP model that the adjustments and the merges share.
 #pragma once
 
+#include <colmap/geometry/sim3.h>
 #include <colmap/scene/reconstruction.h>
 
 #include <unordered_set>
@@ -52,5 +53,12 @@ int KeepOneCopyOfEachImage(
 void MakeSeamModel(const colmap::Reconstruction& model,
                    const std::unordered_set<colmap::image_t>& seam_images,
                    colmap::Reconstruction* seam_model);
+
+// Adds the registered images of `source` that `target` does not hold,
+// transformed by target_from_source, with their 3D points (observations in
+// already held images are left to RefineMergedModel to re-link).
+void AppendReconstruction(const colmap::Reconstruction& source,
+                          const colmap::Sim3d& target_from_source,
+                          colmap::Reconstruction* target);
 
 }  // namespace tmr

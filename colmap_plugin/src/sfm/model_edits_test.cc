@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include "sfm/test_place.h"
+
 namespace tmr {
 namespace {
 
@@ -71,6 +73,33 @@ TEST(KeepOneCopyOfEachImage, SaysWhichCopiesItDeregistered) {
   EXPECT_TRUE(dropped[0].empty());
   EXPECT_EQ(dropped[1].size(), num_images);
   EXPECT_EQ(std::count(dropped[1].begin(), dropped[1].end(), id), 1);
+}
+
+class AppendReconstructionTest : public PlaceModelsTest {};
+
+// A model COLMAP's mapper has continued holds every image of the database,
+// most unregistered (Keep does the same); appended images must still be
+// registered there, with the source's poses and tracks.
+TEST_F(AppendReconstructionTest, AppendRegistersImagesTheTargetHoldsUnregistered) {
+  const std::vector<colmap::image_t> place = Images("place0/");
+  const size_t half = place.size() / 2;
+  colmap::Reconstruction target = Keep({place.begin(), place.begin() + half});
+  colmap::Reconstruction source = Keep({place.begin() + half, place.end()});
+  source.Transform(kMoved);
+  ASSERT_TRUE(target.ExistsImage(place.back()));
+  const size_t points_before = target.NumPoints3D();
+
+  AppendReconstruction(source, colmap::Inverse(kMoved), &target);
+  EXPECT_EQ(target.NumRegImages(), place.size());
+  EXPECT_GT(target.NumPoints3D(), points_before);
+  for (size_t i = half; i < place.size(); ++i) {
+    const colmap::Image& image = target.Image(place[i]);
+    EXPECT_LT(
+        (image.ProjectionCenter() - gt_->Image(place[i]).ProjectionCenter())
+            .norm(),
+        1e-6);
+    EXPECT_GT(image.NumPoints3D(), 0u);
+  }
 }
 
 }  // namespace

@@ -13,27 +13,10 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "io/model_files.h"
 #include "tmr/io/atomic_file.h"
 
 namespace tmr {
-
-bool WriteModelAtomically(const colmap::Reconstruction& model,
-                          const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string temporary = path + ".tmp";
-  std::error_code ec;
-  fs::remove_all(temporary, ec);
-  fs::create_directories(temporary, ec);
-  if (ec) return false;
-  try {
-    model.WriteBinary(temporary);
-  } catch (const std::exception&) {
-    return false;
-  }
-  fs::remove_all(path, ec);
-  fs::rename(temporary, path, ec);
-  return !ec;
-}
 
 bool SaveTaskResult(const ReconstructionTaskResult& result,
                     const std::string& path) {

@@ -77,8 +77,4 @@ bool SaveTaskResult(const ReconstructionTaskResult& result,
 // names is missing.
 bool LoadTaskResult(const std::string& path, ReconstructionTaskResult* result);
 
-// Writes a model through `path`.tmp and a rename; false on failure.
-bool WriteModelAtomically(const colmap::Reconstruction& model,
-                          const std::string& path);
-
 }  // namespace tmr

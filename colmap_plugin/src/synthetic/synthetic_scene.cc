@@ -143,6 +143,72 @@ colmap::Reconstruction GroundTruth(
   return gt;
 }
 
+// Writes the database as COLMAP's feature extraction and matching would:
+// per image its camera (with the prior focal length), rig, image, frame and
+// keypoints, then per pair its raw matches and verified geometry.
+void WriteDatabase(const std::string& database_path,
+                   const SyntheticSceneOptions& options,
+                   const std::vector<ImageIntrinsics>& intrinsics,
+                   const std::vector<double>& prior_focal,
+                   const std::vector<std::string>& names,
+                   const std::vector<ImageKeypoints>& keypoints,
+                   const std::vector<ImagePairMatches>& pairs) {
+  const int num_images = static_cast<int>(names.size());
+  const std::shared_ptr<colmap::Database> database =
+      colmap::Database::Open(database_path);
+  colmap::DatabaseTransaction transaction(database.get());
+  std::vector<colmap::Camera> cameras;
+  cameras.reserve(num_images);
+  for (int i = 0; i < num_images; ++i) {
+    colmap::Camera& camera =
+        cameras.emplace_back(MakeCamera(intrinsics[i], prior_focal[i]));
+    camera.camera_id = database->WriteCamera(camera);
+    colmap::Rig rig;
+    rig.AddRefSensor(camera.SensorId());
+    const colmap::rig_t rig_id = database->WriteRig(rig);
+    colmap::Image image;
+    image.SetName(names[i]);
+    image.SetCameraId(camera.camera_id);
+    const colmap::image_t image_id = database->WriteImage(image);
+    image.SetImageId(image_id);
+    colmap::Frame frame;
+    frame.SetRigId(rig_id);
+    frame.AddDataId(image.DataId());
+    database->WriteFrame(frame);
+    colmap::FeatureKeypoints feature_keypoints;
+    feature_keypoints.reserve(keypoints[i].xy.size());
+    for (const Eigen::Vector2d& xy : keypoints[i].xy) {
+      feature_keypoints.emplace_back(xy.x(), xy.y());
+    }
+    database->WriteKeypoints(image_id, feature_keypoints);
+  }
+  // Each chunk's geometries estimated side by side (each pair seeds its
+  // own RANSAC), then written in order.
+  constexpr size_t kChunk = 4096;
+  colmap::ThreadPool pool(options.num_threads);
+  std::vector<colmap::TwoViewGeometry> geometries;
+  for (size_t begin = 0; begin < pairs.size(); begin += kChunk) {
+    const size_t end = std::min(pairs.size(), begin + kChunk);
+    geometries.assign(end - begin, colmap::TwoViewGeometry());
+    for (size_t p = begin; p < end; ++p) {
+      pool.AddTask([&, p] {
+        geometries[p - begin] =
+            VerifiedGeometry(pairs[p], cameras, keypoints, options.seed);
+      });
+    }
+    pool.Wait();
+    for (size_t p = begin; p < end; ++p) {
+      const ImagePairMatches& pair = pairs[p];
+      const int n1 = keypoints[pair.image1].xy.size();
+      const int n2 = keypoints[pair.image2].xy.size();
+      database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
+                             RawMatches(pair, n1, n2, options));
+      database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1,
+                                     geometries[p - begin]);
+    }
+  }
+}
+
 }  // namespace
 
 bool WriteSyntheticScene(const SyntheticSceneOptions& options,
@@ -189,63 +255,8 @@ bool WriteSyntheticScene(const SyntheticSceneOptions& options,
   const auto pairs =
       synthetic::MatchKeypoints(layout, points, keypoints, options);
 
-  {
-    // As COLMAP's feature extraction writes them: camera, its rig, image,
-    // the image's frame.
-    const std::shared_ptr<colmap::Database> database =
-        colmap::Database::Open(database_path);
-    colmap::DatabaseTransaction transaction(database.get());
-    std::vector<colmap::Camera> cameras;
-    cameras.reserve(num_images);
-    for (int i = 0; i < num_images; ++i) {
-      colmap::Camera& camera =
-          cameras.emplace_back(MakeCamera(intrinsics[i], prior_focal[i]));
-      camera.camera_id = database->WriteCamera(camera);
-      colmap::Rig rig;
-      rig.AddRefSensor(camera.SensorId());
-      const colmap::rig_t rig_id = database->WriteRig(rig);
-      colmap::Image image;
-      image.SetName(names[i]);
-      image.SetCameraId(camera.camera_id);
-      const colmap::image_t image_id = database->WriteImage(image);
-      image.SetImageId(image_id);
-      colmap::Frame frame;
-      frame.SetRigId(rig_id);
-      frame.AddDataId(image.DataId());
-      database->WriteFrame(frame);
-      colmap::FeatureKeypoints feature_keypoints;
-      feature_keypoints.reserve(keypoints[i].xy.size());
-      for (const Eigen::Vector2d& xy : keypoints[i].xy) {
-        feature_keypoints.emplace_back(xy.x(), xy.y());
-      }
-      database->WriteKeypoints(image_id, feature_keypoints);
-    }
-    // Each chunk's geometries estimated side by side (each pair seeds its
-    // own RANSAC), then written in order.
-    constexpr size_t kChunk = 4096;
-    colmap::ThreadPool pool(options.num_threads);
-    std::vector<colmap::TwoViewGeometry> geometries;
-    for (size_t begin = 0; begin < pairs.size(); begin += kChunk) {
-      const size_t end = std::min(pairs.size(), begin + kChunk);
-      geometries.assign(end - begin, colmap::TwoViewGeometry());
-      for (size_t p = begin; p < end; ++p) {
-        pool.AddTask([&, p] {
-          geometries[p - begin] =
-              VerifiedGeometry(pairs[p], cameras, keypoints, options.seed);
-        });
-      }
-      pool.Wait();
-      for (size_t p = begin; p < end; ++p) {
-        const ImagePairMatches& pair = pairs[p];
-        const int n1 = keypoints[pair.image1].xy.size();
-        const int n2 = keypoints[pair.image2].xy.size();
-        database->WriteMatches(pair.image1 + 1, pair.image2 + 1,
-                               RawMatches(pair, n1, n2, options));
-        database->WriteTwoViewGeometry(pair.image1 + 1, pair.image2 + 1,
-                                       geometries[p - begin]);
-      }
-    }
-  }
+  WriteDatabase(database_path, options, intrinsics, prior_focal, names,
+                keypoints, pairs);
 
   const colmap::Reconstruction gt =
       GroundTruth(layout, points, intrinsics, keypoints, pairs, names);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tmr/colmap/match_consistency.h"
+#include "tmr/colmap/match_consistency_options.h"
 
 namespace tmr {
 
@@ -61,10 +61,9 @@ struct ModelEvaluation {
   // orientations onto the reference's (a robust mean over the images).
   ErrorStatistics rotation_error_deg;
   // The same errors after the sim3 fitted to the camera centres, as
-  // COLMAP's ComputeImageAlignmentError gives them: what docs/benchmarks.md
-  // reported before session 24. Its rotation is only as good as the centres
-  // constrain it, which on small or flat camera layouts adds more error
-  // than it measures.
+  // COLMAP's ComputeImageAlignmentError gives them. Its rotation is only as
+  // good as the centres constrain it, which on small or flat camera layouts
+  // adds more error than it measures.
   ErrorStatistics centre_aligned_rotation_error_deg;
   ErrorStatistics position_error;  // share of the scene scale
 
@@ -82,7 +81,7 @@ struct ModelEvaluation {
   // Names of the model's registered images.
   std::vector<std::string> image_names;
   // With options.database_path: the model against the database's verified
-  // matches (tmr/colmap/match_consistency.h), tested and judged with
+  // matches (tmr/colmap/match_consistency_options.h), tested and judged with
   // options.match_consistency.
   std::optional<MatchConsistency> match_consistency;
   bool match_consistent = false;  // match_consistency passes the options

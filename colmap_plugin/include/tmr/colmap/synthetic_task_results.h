@@ -30,7 +30,7 @@ struct SyntheticTaskResultsOptions {
 // options.output_path (PlanTmrMapper) from a ground-truth model whose images
 // have the database's ids (tmr_synth's --model_path), as the tasks would
 // leave them in the work folder, so that MergeTmrMapper measures the merge
-// stage alone, at sizes where running the tasks would take days (issue 43).
+// stage alone, at sizes where running the tasks would take days.
 // Each model registers all of its task's images: a kernel task its kernel,
 // a leaf task its kernel (with the kernel model's poses, as leaf tasks hold
 // them), its leaf cluster and its halo. Poses and points carry Gaussian

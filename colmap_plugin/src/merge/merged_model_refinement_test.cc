@@ -1,9 +1,12 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// Bundle adjustment by blocks (AdjustByBlocks) on a tmr_synth city of two
+// The refinement of merged models (RefineMergedModel), by blocks
+// (AdjustByBlocks, CovisibleImageBlocks), on a tmr_synth city of two
 // blocks whose second half was placed slightly off, its tracks split at the
 // seam, as a scene merge leaves it: re-linked and adjusted by blocks of a
 // third of the images, the poses come back as well as with the whole model
 // adjusted. A small part that joins late is adjusted alone.
+#include "merge/merged_model_refinement.h"
+
 #include <colmap/scene/database.h>
 #include <colmap/scene/database_cache.h>
 #include <colmap/scene/reconstruction.h>
@@ -16,9 +19,10 @@
 #include <unordered_set>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "merge/model_merging.h"
+#include "io/model_files.h"
 #include "sfm/block_adjustment.h"
-#include "test_scene.h"
+#include "sfm/model_edits.h"
+#include "sfm/test_scene.h"
 
 namespace tmr {
 namespace {

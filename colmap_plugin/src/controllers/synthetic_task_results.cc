@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "controllers/tmr_mapper_stages.h"
+#include "io/model_files.h"
 #include "sfm/model_edits.h"
 #include "sfm/reconstruction_task.h"
 #include "tmr/colmap/synthetic_task_results.h"

@@ -11,8 +11,9 @@
 #include <sstream>
 
 #include "evaluation/evaluate_reconstruction.h"
-#include "merge/model_merging.h"
-#include "test_scene.h"
+#include "io/model_files.h"
+#include "sfm/model_edits.h"
+#include "sfm/test_scene.h"
 
 namespace tmr {
 namespace {
@@ -160,6 +161,21 @@ TEST(ModelEvaluationOptions, Check) {
   options.displaced_threshold = options.inlier_threshold / 2;
   EXPECT_FALSE(options.Check());
   EXPECT_THROW(ReadModel("/nonexistent/model"), std::runtime_error);
+}
+
+// With a database, the model is checked against its verified matches
+// (CheckMatchConsistency); the database is left as it was.
+TEST_F(ModelEvaluationTest, TheMatchConsistencyCheckIsReported) {
+  const std::string database = (dir_ / "database.db").string();
+  ModelEvaluationOptions options;
+  options.database_path = database;
+  const auto before = fs::last_write_time(database);
+  const ModelEvaluation e = EvaluateModel("", (dir_ / "gt").string(), options);
+  ASSERT_TRUE(e.match_consistency.has_value());
+  EXPECT_TRUE(e.match_consistency->IsConsistent(MatchConsistencyOptions()));
+  EXPECT_TRUE(e.match_consistent);
+  EXPECT_GT(e.match_consistency->num_matches, 10000);
+  EXPECT_EQ(fs::last_write_time(database), before);
 }
 
 }  // namespace

@@ -1,15 +1,12 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // Command-line parsing shared by the tools: options from their tables
-// (tmr/util/option_table.h), --help, one error line.
+// (tmr/util/option_table.h), --help, one error line, project.ini.
 #pragma once
 
 #include <boost/program_options.hpp>
 #include <optional>
-#include <ostream>
 #include <string>
 
-#include "tmr/io/atomic_file.h"
-#include "tmr/partition/tmr_tree.h"
 #include "tmr/util/option_table.h"
 
 namespace tmr {
@@ -51,8 +48,13 @@ void AddOptionsOf(boost::program_options::options_description* desc,
   AddOptionRows(desc, table);
 }
 
-// Prints kernels, image clusters and leaf clusters with their sizes, the
-// unclustered images and the time per stage.
-void PrintTreeSummary(const TmrTree& tree, std::ostream& out);
+// project.ini as COLMAP writes it: one `name=value` line per option given
+// or defaulted (not --help).
+std::string ProjectIni(const boost::program_options::options_description& desc,
+                       const boost::program_options::variables_map& vm);
+
+// The project.ini beside the --plan of the command line (the later stages
+// of tmr_mapper, tmr_synth_tasks); "" without --plan.
+std::string ProjectIniOfPlan(int argc, char** argv);
 
 }  // namespace tmr

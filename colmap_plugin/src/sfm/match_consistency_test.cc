@@ -4,6 +4,8 @@
 // photos moved as a rigid block (their tracks split off from the others')
 // contradicts them. And the kernel redo of RunReconstructionTask on real
 // COLMAP mapper runs.
+#include "sfm/match_consistency.h"
+
 #include <colmap/scene/database.h>
 #include <colmap/scene/reconstruction.h>
 #include <gtest/gtest.h>
@@ -11,10 +13,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "evaluation/evaluate_reconstruction.h"
-#include "sfm/match_consistency.h"
+#include "io/model_files.h"
 #include "sfm/reconstruction_task.h"
-#include "test_scene.h"
+#include "sfm/test_scene.h"
 
 namespace tmr {
 namespace {
@@ -108,18 +109,6 @@ TEST_F(MatchConsistencyTest, LowAngleMatchesAreNotTested) {
   std::string error;
   EXPECT_FALSE(bad.Check(&error));
   EXPECT_EQ(error, "min_triangulation_angle_deg must be in [0, 90)");
-}
-
-TEST_F(MatchConsistencyTest, EvaluationReportsIt) {
-  ModelEvaluationOptions options;
-  options.database_path = Database();
-  const auto before = fs::last_write_time(Database());
-  const ModelEvaluation e = EvaluateModel("", (dir_ / "gt").string(), options);
-  ASSERT_TRUE(e.match_consistency.has_value());
-  EXPECT_TRUE(e.match_consistency->IsConsistent(MatchConsistencyOptions()));
-  EXPECT_TRUE(e.match_consistent);
-  EXPECT_GT(e.match_consistency->num_matches, 10000);
-  EXPECT_EQ(fs::last_write_time(Database()), before);
 }
 
 // A check no model can pass (0.01 px) makes a kernel task map again with

@@ -9,8 +9,8 @@
 #include <map>
 #include <set>
 
-#include "test_files.h"
 #include "tmr/colmap/synthetic_scene.h"
+#include "tmr/io/atomic_file.h"
 #include "tmr/io/database_reader.h"
 #include "tmr/scene/graph_summary.h"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <unordered_set>
 
-#include "merge/model_merging.h"
+#include "sfm/model_edits.h"
 #include "tmr/colmap/synthetic_scene.h"
 
 namespace tmr {

@@ -1,6 +1,6 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-// The result of checking a model against the verified matches of its
-// database (CheckMatchConsistency in colmap_plugin; tmr_eval
+// The options and the result of checking a model against the verified
+// matches of its database (CheckMatchConsistency in colmap_plugin; tmr_eval
 // --database_path).
 #pragma once
 

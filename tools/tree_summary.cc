@@ -1,54 +1,12 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "tmr_options.h"
+#include "tree_summary.h"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
-#include <iostream>
-#include <map>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace tmr {
-
-namespace po = boost::program_options;
-
-std::optional<int> ParseCommandLine(
-    const std::string& tool, int argc, char** argv,
-    const po::options_description& desc, po::variables_map* vm,
-    const po::positional_options_description& positional,
-    const std::string& config_file) {
-  try {
-    po::store(po::command_line_parser(argc, argv)
-                  .options(desc)
-                  .positional(positional)
-                  .run(),
-              *vm);
-    if (!config_file.empty())
-      po::store(po::parse_config_file<char>(config_file.c_str(), desc), *vm);
-    if (vm->count("help")) {
-      std::cout << desc << "\n";
-      return 0;
-    }
-    po::notify(*vm);
-  } catch (const po::error& e) {
-    std::cerr << tool << ": error: " << e.what() << " (see --help)\n";
-    return 2;
-  }
-  return std::nullopt;
-}
-
-void AddOptionRows(po::options_description* desc, const OptionTable& table) {
-  for (const OptionRow& row : table.rows()) {
-    std::visit(
-        [&](auto* field) {
-          AddOption(desc, row.name.c_str(), field, row.help.c_str());
-        },
-        row.value);
-  }
-}
 
 void PrintTreeSummary(const TmrTree& tree, std::ostream& out) {
   out << "TMR-tree: " << tree.image_names.size()

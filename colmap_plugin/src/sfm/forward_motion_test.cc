@@ -2,8 +2,7 @@
 // MeasureForwardMotion on a database written by COLMAP's Database class:
 // pairs with an essential matrix (calibrated) and with only a fundamental
 // matrix (its epipole read through camera 2's focal length and principal
-// point), moving forward or sideways; planar pairs are left out. And the
-// mapper options for forward motion keep what the user set.
+// point), moving forward or sideways; planar pairs are left out.
 #include "sfm/forward_motion.h"
 
 #include <colmap/geometry/essential_matrix.h>
@@ -98,26 +97,6 @@ TEST_F(ForwardMotionTest, CountsPairsMovingAlongTheViewingDirection) {
   EXPECT_EQ(stats.num_forward, 3);
   EXPECT_TRUE(stats.MovesForward(0.5));
   EXPECT_FALSE(stats.MovesForward(1.0));  // never more than every pair
-}
-
-TEST(ForwardMotionMapperOptionsTest, ChangesOnlyCOLMAPsDefaults) {
-  MapperPassThroughOptions user;
-  user.init_min_tri_angle = 4.0;  // set by the user: kept
-  const MapperPassThroughOptions held = ForwardMotionMapperOptions(user, true);
-  EXPECT_EQ(held.init_max_forward_motion, 1.0);
-  EXPECT_EQ(held.init_min_tri_angle, 4.0);
-  EXPECT_EQ(held.tri_min_angle, 0.5);
-  EXPECT_EQ(held.filter_min_tri_angle, 0.5);
-  EXPECT_FALSE(held.ba_refine_focal_length);
-  EXPECT_FALSE(held.ba_refine_extra_params);
-
-  // Without an EXIF focal length for every camera, the intrinsics are still
-  // refined.
-  const MapperPassThroughOptions refined =
-      ForwardMotionMapperOptions(MapperPassThroughOptions(), false);
-  EXPECT_EQ(refined.init_min_tri_angle, 2.0);
-  EXPECT_TRUE(refined.ba_refine_focal_length);
-  EXPECT_TRUE(refined.ba_refine_extra_params);
 }
 
 }  // namespace

@@ -1,18 +1,14 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
-#include "merge/model_merging.h"
+#include "merge/shared_track_alignment.h"
 
-#include <colmap/estimators/bundle_adjustment.h>
 #include <colmap/estimators/solvers/similarity_transform.h>
 #include <colmap/optim/loransac.h>
-#include <colmap/sfm/incremental_mapper.h>
 
 #include <algorithm>
 #include <sstream>
-#include <stdexcept>
+#include <string>
 #include <unordered_set>
-
-#include "sfm/block_adjustment.h"
-#include "sfm/parallel_block_adjustment.h"
+#include <vector>
 
 namespace tmr {
 namespace {
@@ -192,130 +188,6 @@ ModelAlignment AlignModelsBySharedTracks(
   result.target_from_source = sim;
   result.success = true;
   return result;
-}
-
-void AppendReconstruction(const colmap::Reconstruction& source,
-                          const colmap::Sim3d& target_from_source,
-                          colmap::Reconstruction* target) {
-  colmap::Reconstruction moved = source;
-  moved.Transform(target_from_source);
-  std::unordered_set<colmap::image_t> added;
-  for (const colmap::image_t image_id : moved.RegImageIds()) {
-    const colmap::Image& image = moved.Image(image_id);
-    if (target->ExistsImage(image_id)) {
-      // A model a mapper has continued holds every image of the database,
-      // most unregistered; such an image takes the source's pose.
-      const colmap::Image& held = target->Image(image_id);
-      if (held.HasPose()) continue;
-      if (held.NumPoints2D() != image.NumPoints2D())
-        throw std::logic_error(
-            "AppendReconstruction: the models disagree on "
-            "the keypoints of " +
-            image.Name());
-      SetPoseAndRegister(image_id, image.CamFromWorld(), target);
-    } else {
-      AddImageWithoutPoints(moved, image_id, image.CamFromWorld(), target);
-    }
-    added.insert(image_id);
-  }
-  for (const auto& [point_id, point] : moved.Points3D()) {
-    colmap::Track track;
-    for (const colmap::TrackElement& el : point.track.Elements()) {
-      if (added.count(el.image_id)) track.AddElement(el);
-    }
-    if (track.Length() >= 2) target->AddPoint3D(point.xyz, track, point.color);
-  }
-}
-
-std::string AdjustMergedBundle(
-    const colmap::IncrementalPipelineOptions& mapper_options,
-    const MergedModelAdjustment& adjustment, colmap::IncrementalMapper* mapper,
-    MergedModelRefinement* refinement) {
-  colmap::Reconstruction& model = *mapper->Reconstruction();
-  const size_t num_images = model.NumRegImages();
-  if (num_images < 2) return "";
-  mapper->ObservationManager().FilterObservationsWithNegativeDepth();
-  const colmap::BundleAdjustmentOptions options =
-      mapper_options.GlobalBundleAdjustment();
-  if (!adjustment.only_images.empty()) {
-    const BlockAdjustment block =
-        AdjustBlock(adjustment.only_images, options, &model);
-    return "block of " + std::to_string(adjustment.only_images.size()) +
-           " images, " + std::to_string(block.num_iterations) + " iterations" +
-           (block.converged ? "" : ", not converged");
-  }
-  if (adjustment.longest_tracks_per_image > 0) {
-    return AdjustOnLongestTracks(options, adjustment.longest_tracks_per_image,
-                                 &model);
-  }
-  if (adjustment.max_block_images > 0 &&
-      num_images > adjustment.max_block_images)
-    return AdjustByBlocks(options, adjustment.max_block_images, &model);
-  if (adjustment.parallel_block_images > 0 &&
-      num_images > adjustment.parallel_block_images) {
-    const BlocksAdjustment blocks = AdjustBlocksAtOnce(
-        CovisibleImageBlocks(model, adjustment.parallel_block_images), options,
-        adjustment.num_workers, &model);
-    if (refinement != nullptr) {
-      refinement->block_seconds.insert(refinement->block_seconds.end(),
-                                       blocks.block_seconds.begin(),
-                                       blocks.block_seconds.end());
-      refinement->blocks_wall_seconds += blocks.seconds;
-    }
-    return blocks.Describe();
-  }
-  return AdjustWholeModel(options, &model);
-}
-
-MergedModelRefinement RefineMergedModel(
-    const std::shared_ptr<const colmap::DatabaseCache>& database_cache,
-    const colmap::IncrementalPipelineOptions& mapper_options,
-    const MergedModelAdjustment& adjustment,
-    const std::shared_ptr<colmap::Reconstruction>& model) {
-  colmap::IncrementalMapper mapper(database_cache);
-  mapper.BeginReconstruction(model);
-  const auto triangulation = mapper_options.Triangulation();
-  mapper.CompleteAndMergeTracks(triangulation);
-  mapper.Retriangulate(triangulation);
-  MergedModelRefinement refinement;
-  std::string& report = refinement.report;
-  size_t filtered = 0;
-  // A model adjusted by blocks gets one round: repeated block passes made
-  // it three times less accurate (docs/mapper.md, step 7).
-  const bool by_blocks = adjustment.max_block_images > 0 &&
-                         model->NumRegImages() > adjustment.max_block_images;
-  const int rounds = adjustment.enabled && !by_blocks &&
-                             adjustment.only_images.empty() &&
-                             adjustment.longest_tracks_per_image == 0
-                         ? adjustment.max_refinements
-                         : 1;
-  size_t changed = 0;
-  for (int round = 0; round < rounds; ++round) {
-    const size_t num_observations = model->ComputeNumObservations();
-    if (adjustment.enabled) {
-      report +=
-          (round > 0 ? "; round " + std::to_string(round + 1) + ": " : "") +
-          AdjustMergedBundle(mapper_options, adjustment, &mapper, &refinement);
-    }
-    changed = mapper.CompleteAndMergeTracks(triangulation);
-    const size_t round_filtered = mapper.FilterPoints(mapper_options.Mapper());
-    filtered += round_filtered;
-    changed += round_filtered;
-    if (num_observations == 0 ||
-        changed < adjustment.max_refinement_change * num_observations)
-      break;
-  }
-  if (adjustment.enabled && adjustment.adjust_after_last_change && rounds > 1 &&
-      changed > 0) {
-    report +=
-        "; after " + std::to_string(changed) + " changed observations: " +
-        AdjustMergedBundle(mapper_options, adjustment, &mapper, &refinement);
-    filtered += mapper.FilterPoints(mapper_options.Mapper());
-  }
-  mapper.EndReconstruction(/*discard=*/false);
-  report += (report.empty() ? "" : "; ") + std::to_string(filtered) +
-            " points filtered";
-  return refinement;
 }
 
 }  // namespace tmr
