@@ -30,6 +30,9 @@ PACKAGES=(
 # (tests/slurm/local_slurm.sh); the packages' own services are not started.
 # Optional: without them that one test is skipped.
 SLURM_PACKAGES=(slurmctld slurmd slurm-client munge)
+# The report page's test opens report.html in headless Chromium. Optional:
+# without it that test is skipped.
+BROWSER_PACKAGES=(chromium)
 
 log() { echo "[setup] $*"; }
 die() { echo "[setup] error: $*" >&2; exit 1; }
@@ -78,6 +81,18 @@ else
   apt_slurm || { $SUDO apt-get update -qq && apt_slurm; } ||
     log "warning: Slurm packages not installed (see /tmp/tmr-apt-slurm.log); the Slurm test will be skipped"
   [[ -z "$guard" ]] || $SUDO rm -f "$guard"
+fi
+
+if dpkg-query -W -f='${Status}' "${BROWSER_PACKAGES[@]}" 2>/dev/null | grep -q "install ok installed"; then
+  log "browser for the report page's test: present"
+else
+  log "installing ${BROWSER_PACKAGES[*]} for the report page's test"
+  apt_browser() {
+    $SUDO apt-get install -y -qq --no-install-recommends "${BROWSER_PACKAGES[@]}" \
+      >/tmp/tmr-apt-browser.log 2>&1
+  }
+  apt_browser || { $SUDO apt-get update -qq && apt_browser; } ||
+    log "warning: ${BROWSER_PACKAGES[*]} not installed (see /tmp/tmr-apt-browser.log); the report page's browser test will be skipped"
 fi
 
 # --- 2. PoseLib 2.0.5 and COLMAP 4.1.1 --------------------------------------------

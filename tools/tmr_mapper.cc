@@ -9,6 +9,8 @@
 //   tmr_mapper status --plan OUT/plan.txt
 //   tmr_mapper merge --plan OUT/plan.txt [--group merge.G]
 //     [--Mapper.num_threads N]
+//   tmr_mapper report --plan OUT/plan.txt   (report.html again, e.g. after
+//     tmr_eval wrote OUT/eval.json)
 // The later stages take the options from OUT/project.ini, which partition
 // writes with absolute paths. Each stage is a call of the library
 // (tmr/colmap/tmr_mapper.h); `tmr_mapper STAGE --help` lists its options.
@@ -21,8 +23,8 @@
 #include <map>
 
 #include "command_line.h"
-#include "drawing/partition_picture.h"
 #include "progress_lines.h"
+#include "report/report_page.h"
 #include "tmr/colmap/tmr_mapper.h"
 #include "tmr/io/atomic_file.h"
 
@@ -37,7 +39,7 @@ const std::map<std::string, std::string>& StageUsage() {
       {"run",
        "tmr_mapper --database_path DB --output_path OUT [options]: COLMAP's "
        "incremental mapper on the TMR-tree (stages: partition, run_task, "
-       "status, merge; `tmr_mapper STAGE --help`)"},
+       "status, merge, report; `tmr_mapper STAGE --help`)"},
       {"partition",
        "tmr_mapper partition --database_path DB --output_path OUT [options]: "
        "the TMR-tree, the task plan OUT/plan.txt and OUT/project.ini"},
@@ -50,7 +52,10 @@ const std::map<std::string, std::string>& StageUsage() {
       {"merge",
        "tmr_mapper merge --plan OUT/plan.txt: merges the finished tasks into "
        "the models OUT/0, 1, ... (by parts: --group merge.G merges one "
-       "group of the plan)"}};
+       "group of the plan)"},
+      {"report",
+       "tmr_mapper report --plan OUT/plan.txt: writes OUT/report.html again "
+       "(with OUT/eval.json when tmr_eval wrote one there)"}};
   return usage;
 }
 
@@ -144,9 +149,8 @@ int RunOrMerge(const std::string& stage, const tmr::TmrMapperOptions& o,
                       ? tmr::MergeTmrMapper(o, &report, &error, progress)
                       : tmr::RunTmrMapper(o, &report, &error, progress);
   if (!ok) return Error(error);
-  if (stage == "run" && !tmr::DrawRunPartitionPicture(
-                            o.database_path, o.match_graph, o.output_path))
-    progress("partition.png skipped: too many images to draw");
+  tmr::WriteRunPictures(o.database_path, o.match_graph, o.output_path,
+                        progress);
   std::cout << "tmr_mapper: " << report.num_images << " images, "
             << report.model_sizes.size() << " models (registered:";
   for (const int size : report.model_sizes) std::cout << " " << size;
@@ -167,9 +171,9 @@ int main(int argc, char** argv) {
     --argc;
   }
   if (!StageUsage().count(stage)) {
-    return Error(
-        "unknown stage '" + stage + "' (partition, run_task, status or merge)",
-        2);
+    return Error("unknown stage '" + stage +
+                     "' (partition, run_task, status, merge or report)",
+                 2);
   }
   tmr::TmrMapperOptions o;
   bool verbose = false;
@@ -226,6 +230,11 @@ int main(int argc, char** argv) {
     if (stage == "partition" || stage == "status")
       return PlanOrStatus(stage, o, progress);
     if (stage == "run_task") return RunTask(o, task);
+    if (stage == "report") {
+      tmr::WriteRunPictures(o.database_path, o.match_graph, o.output_path,
+                            progress);
+      return 0;
+    }
     if (stage == "merge" && !group.empty()) {
       if (!tmr::MergeTmrMapperGroup(o, group, &error, progress))
         return Error(error);

@@ -9,8 +9,8 @@
 #include <iostream>
 
 #include "command_line.h"
-#include "drawing/partition_picture.h"
 #include "progress_lines.h"
+#include "report/report_page.h"
 #include "tmr/colmap/reconstruct_images.h"
 #include "tmr/io/atomic_file.h"
 
@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
     tmr::WriteFileAtomically(
         (fs::path(mapper.output_path) / "project.ini").string(),
         tmr::ProjectIni(desc, vm));
-    tmr::DrawRunPartitionPicture(mapper.database_path, mapper.match_graph,
-                                 mapper.output_path);
+    tmr::WriteRunPictures(mapper.database_path, mapper.match_graph,
+                          mapper.output_path, tmr::TimedProgressLines());
   } catch (const std::exception& e) {
     std::cerr << "tmr_reconstruct: error: " << e.what() << "\n";
     return 1;

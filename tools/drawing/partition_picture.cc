@@ -31,10 +31,17 @@ cv::Scalar Colour(int cluster, int leaf, int num_leaves) {
 
 bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,
                           const std::string& png_path, int size_px) {
+  PartitionMap map{similarity, tree, ForceDirectedLayout(similarity)};
+  return DrawPartitionPicture(map, png_path, size_px);
+}
+
+bool DrawPartitionPicture(const PartitionMap& map, const std::string& png_path,
+                          int size_px) {
+  const ImageGraph& similarity = map.similarity;
+  const TmrTree& tree = map.tree;
+  const std::vector<std::array<double, 2>>& layout = map.layout;
   const int n = similarity.NumVertices();
   if (n == 0) return false;
-  const std::vector<std::array<double, 2>> layout =
-      ForceDirectedLayout(similarity);
   double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
   for (const std::array<double, 2>& p : layout) {
     min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
@@ -93,26 +100,33 @@ bool DrawPartitionPicture(const ImageGraph& similarity, const TmrTree& tree,
   return cv::imwrite(png_path, canvas);
 }
 
-bool DrawRunPartitionPicture(const std::string& database_path,
-                             const MatchGraphOptions& match_graph,
-                             const std::string& output_path) {
-  // Beyond this size a dot per image is unreadable at 1,600 pixels (the
-  // layout itself takes 3 s at 3,752 images and grows as n log n). The
-  // tree's size decides before the match graph is read.
-  constexpr size_t kMaxPictureImages = 20000;
+std::optional<PartitionMap> ReadRunPartitionMap(
+    const std::string& database_path, const MatchGraphOptions& match_graph,
+    const std::string& output_path, size_t max_images) {
   const std::string tree_path = TmrTreeJsonPath(output_path);
   std::ifstream tree_file(tree_path);
-  if (ReadTmrTreeJson(tree_file).image_names.size() > kMaxPictureImages)
-    return false;
+  if (ReadTmrTreeJson(tree_file).image_names.size() > max_images)
+    return std::nullopt;
   const MatchGraph graph = ReadMatchGraph(database_path, match_graph);
   std::vector<std::string> names;
   for (const auto& image : graph.images) names.push_back(image.name);
   tree_file.clear();
   tree_file.seekg(0);
-  const TmrTree tree = ReadTmrTreeJson(tree_file, names);
+  PartitionMap map;
+  map.tree = ReadTmrTreeJson(tree_file, names);
+  map.similarity = BuildSimilarityGraph(graph);
+  map.layout = ForceDirectedLayout(map.similarity);
+  return map;
+}
+
+bool DrawRunPartitionPicture(const std::string& database_path,
+                             const MatchGraphOptions& match_graph,
+                             const std::string& output_path) {
+  const std::optional<PartitionMap> map =
+      ReadRunPartitionMap(database_path, match_graph, output_path);
+  if (!map) return false;
   DrawPartitionPicture(
-      BuildSimilarityGraph(graph), tree,
-      (std::filesystem::path(output_path) / "partition.png").string());
+      *map, (std::filesystem::path(output_path) / "partition.png").string());
   return true;
 }
 

@@ -44,7 +44,10 @@ std::string ReportJson(const TmrMapperReport& r) {
     out << (i ? ", " : "") << "\"" << r.projected_wall_s[i].first
         << "\": " << r.projected_wall_s[i].second;
   }
-  out << "}, \"model_sizes\": [";
+  out << "}, \"workers\": " << r.num_workers << ", \"critical_path\": [";
+  for (size_t i = 0; i < r.critical_path_rows.size(); ++i)
+    out << (i ? ", " : "") << r.critical_path_rows[i];
+  out << "], \"model_sizes\": [";
   for (size_t i = 0; i < r.model_sizes.size(); ++i)
     out << (i ? ", " : "") << r.model_sizes[i];
   out << "], \"tasks\": [";
@@ -70,6 +73,12 @@ std::string ReportJson(const TmrMapperReport& r) {
         out << (p ? ", " : "") << t.part_seconds[p];
       out << "]";
     }
+    if (!t.link.empty()) {
+      out << ", \"link\": [";
+      for (size_t k = 0; k < t.link.size(); ++k)
+        out << (k ? ", " : "") << t.link[k];
+      out << "]";
+    }
     out << ", \"message\": \"" << JsonEscaped(t.message) << "\"}";
   }
   out << "\n], \"weak_links\": [";
@@ -87,7 +96,43 @@ std::string ReportJson(const TmrMapperReport& r) {
   return out.str();
 }
 
+namespace {
+
+// The rows of the longest chain of dependent rows, first to last: each
+// row takes its time on one thread and its parts' longest (reused rows 0).
+std::vector<int> CriticalPathRows(const std::vector<TmrTaskReport>& rows) {
+  const int n = static_cast<int>(rows.size());
+  std::vector<double> finish(n, 0.0);
+  std::vector<int> previous(n, -1);
+  int last = -1;
+  for (int t = 0; t < n; ++t) {
+    const TmrTaskReport& row = rows[t];
+    double own = row.reused ? 0.0 : row.seconds;
+    if (!row.reused && !row.part_seconds.empty()) {
+      own = std::max(0.0, row.seconds - row.parts_wall_s) +
+            *std::max_element(row.part_seconds.begin(), row.part_seconds.end());
+    }
+    double ready = 0.0;
+    for (const int d : row.depends) {
+      if (previous[t] < 0 || finish[d] > ready) {
+        ready = finish[d];
+        previous[t] = d;
+      }
+    }
+    finish[t] = ready + own;
+    if (last < 0 || finish[t] >= finish[last]) last = t;
+  }
+  std::vector<int> path;
+  for (int t = last; t >= 0; t = previous[t]) path.push_back(t);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace
+
 void SummarizeTimeline(int num_workers, TmrMapperReport* r) {
+  r->num_workers = num_workers;
+  r->critical_path_rows = CriticalPathRows(r->tasks);
   const int n = static_cast<int>(r->tasks.size());
   // One node per row for its time on one thread, and one per part that ran
   // side by side, after it; a row that waits for another waits for all of

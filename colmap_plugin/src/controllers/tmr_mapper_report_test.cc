@@ -50,6 +50,11 @@ TEST(SummarizeTimeline, CriticalPathAndProjections) {
   EXPECT_NE(json.find("\"after_tasks_share\": 0.5,"), std::string::npos)
       << json;
   EXPECT_NE(json.find("\"depends\": [0, 3]"), std::string::npos) << json;
+  // The chain: kernel 0, leaf 0.0, merge cluster 0, the two assembly steps.
+  EXPECT_EQ(r.critical_path_rows, (std::vector<int>{0, 3, 5, 6, 7}));
+  EXPECT_NE(json.find("\"workers\": 2, \"critical_path\": [0, 3, 5, 6, 7]"),
+            std::string::npos)
+      << json;
 }
 
 TEST(SummarizeTimeline, ReusedTasksCountNothing) {
@@ -66,6 +71,9 @@ TEST(SummarizeTimeline, ReusedTasksCountNothing) {
   SummarizeTimeline(2, &r);
   EXPECT_DOUBLE_EQ(r.tasks_end_s, 3);
   EXPECT_DOUBLE_EQ(r.critical_path_s, 2 + 1 + 10 + 5 + 1);
+  // Reused tasks take no time: the chain is a reused kernel, its cluster
+  // merge (the first of two equally long) and the assembly.
+  EXPECT_EQ(r.critical_path_rows, (std::vector<int>{1, 4, 6, 7}));
 }
 
 TEST(SummarizeTimeline, PartsSideBySideShrinkWithMoreWorkers) {

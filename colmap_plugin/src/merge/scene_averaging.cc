@@ -120,6 +120,7 @@ std::vector<TmrTaskReport> LinkRows(
                         " (aligned in " +
                         std::to_string(std::lround(seconds[p] * 1000)) +
                         " ms)"});
+    rows.back().link = {keys[p].first, keys[p].second, a, b};
   }
   for (size_t l = 0; l < link_pair.size(); ++l) {
     TmrTaskReport& row = rows[link_pair[l]];
@@ -176,8 +177,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
   // Models too small to move as one block stay out (as in MergeScenes),
   // left to CompleteScenes; a join has no completion after it, and the
   // images a small model shares with another group's hold it.
-  const size_t min_size =
-      o_.complete_models && !joining ? MinModelSize() : 0;
+  const size_t min_size = o_.complete_models && !joining ? MinModelSize() : 0;
   std::vector<const colmap::Reconstruction*> models;
   int num_images = 0;
   for (const AssemblyScene& scene : *scenes) {

@@ -32,6 +32,10 @@ struct TmrTaskReport {
   // (MiB): a step that raised the peak is the one that needed it.
   double rss_mib = 0.0;
   double peak_mib = 0.0;
+  // A link row of the scene assembly (a pair of models aligned, held or
+  // refused): its two models as indexes among the models of the "align"
+  // row before it (largest first), then their registered images.
+  std::vector<int> link = {};
 };
 
 // Two final models that verified pairs link but no merge rule joined: what

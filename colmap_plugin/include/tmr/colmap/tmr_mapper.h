@@ -182,6 +182,11 @@ struct TmrMapperReport {
   double tasks_end_s = 0.0;
   double critical_path_s = 0.0;
   std::vector<std::pair<int, double>> projected_wall_s;
+  // The workers the run had, and the rows of its longest chain of
+  // dependent rows (each part-parallel row counted at its longest part),
+  // first to last.
+  int num_workers = 0;
+  std::vector<int> critical_path_rows;
 };
 
 // Reconstructs the database on its TMR-tree (paper Sec. 5): kernels in

@@ -1,0 +1,290 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+#include "report/report_page.h"
+
+#include <colmap/scene/reconstruction.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+
+#include "tmr/io/atomic_file.h"
+#include "tmr/partition/tmr_tree.h"
+
+namespace tmr {
+
+// The page's template, style and script (tools/report/page/), embedded at
+// build time by cmake/embed_text_files.cmake.
+extern const char* const kReportPageTemplate;
+extern const char* const kReportPageStyle;
+extern const char* const kReportPageScript;
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// Coordinates on an integer grid (x = origin + q * step), so that the page
+// stays small: the step is a 10,000th of the span that holds 96% of the
+// values on each axis.
+struct Grid {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double step = 1.0;
+
+  Json Quantized(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d q = (x - origin) / step;
+    return {std::llround(q.x()), std::llround(q.y()), std::llround(q.z())};
+  }
+};
+
+Grid GridOf(std::vector<Eigen::Vector3d> xyz) {
+  Grid grid;
+  if (xyz.empty()) return grid;
+  double span = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> values;
+    for (const Eigen::Vector3d& x : xyz) values.push_back(x(axis));
+    std::sort(values.begin(), values.end());
+    const double low = values[values.size() * 2 / 100];
+    const double high = values[values.size() * 98 / 100];
+    grid.origin(axis) = low;
+    span = std::max(span, high - low);
+  }
+  grid.step = std::max(span / 10000.0, 1e-12);
+  return grid;
+}
+
+void AppendAll(const Json& values, Json* out) {
+  for (const Json& v : values) out->push_back(v);
+}
+
+// One model: its figures, its cameras (centre, then the viewing direction
+// and the image's right and down half-extents at unit depth, in
+// thousandths) and every `stride`-th of its points (by id) with colours.
+Json ModelData(const colmap::Reconstruction& model, const std::string& name,
+               size_t stride) {
+  std::vector<colmap::image_t> image_ids = model.RegImageIds();
+  std::sort(image_ids.begin(), image_ids.end());
+  std::vector<colmap::point3D_t> point_ids;
+  for (const auto& [id, point] : model.Points3D()) point_ids.push_back(id);
+  std::sort(point_ids.begin(), point_ids.end());
+  std::vector<Eigen::Vector3d> drawn;
+  for (const colmap::image_t id : image_ids)
+    drawn.push_back(model.Image(id).ProjectionCenter());
+  std::vector<colmap::point3D_t> drawn_points;
+  for (size_t i = 0; i < point_ids.size(); i += std::max<size_t>(stride, 1))
+    drawn_points.push_back(point_ids[i]);
+  for (const colmap::point3D_t id : drawn_points)
+    drawn.push_back(model.Point3D(id).xyz);
+  const Grid grid = GridOf(drawn);
+  Json cameras = Json::array(), xyz = Json::array(), rgb = Json::array();
+  for (const colmap::image_t id : image_ids) {
+    const colmap::Image& image = model.Image(id);
+    const colmap::Camera& camera = *image.CameraPtr();
+    const Eigen::Matrix3d r =
+        image.CamFromWorld().rotation().toRotationMatrix();
+    const double f = std::max(camera.MeanFocalLength(), 1e-9);
+    AppendAll(grid.Quantized(image.ProjectionCenter()), &cameras);
+    const Eigen::Vector3d axes[3] = {
+        r.row(2).transpose(), r.row(0).transpose() * camera.width / (2 * f),
+        r.row(1).transpose() * camera.height / (2 * f)};
+    for (const Eigen::Vector3d& axis : axes)
+      for (int k = 0; k < 3; ++k)
+        cameras.push_back(std::lround(1000 * axis(k)));
+  }
+  for (const colmap::point3D_t id : drawn_points) {
+    const colmap::Point3D& point = model.Point3D(id);
+    AppendAll(grid.Quantized(point.xyz), &xyz);
+    for (int k = 0; k < 3; ++k) rgb.push_back(int(point.color(k)));
+  }
+  return {{"name", name},
+          {"registered", model.NumRegImages()},
+          {"points", model.NumPoints3D()},
+          {"observations", model.ComputeNumObservations()},
+          {"mean_reprojection_error_px", model.ComputeMeanReprojectionError()},
+          {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
+          {"step", grid.step},
+          {"cameras", std::move(cameras)},
+          {"points_drawn", drawn_points.size()},
+          {"xyz", std::move(xyz)},
+          {"rgb", std::move(rgb)}};
+}
+
+// The run's models output_path/0, 1, ..., in order, each read once to count
+// its points and once to draw them (one model in memory at a time).
+Json ModelsData(const std::string& output_path,
+                const ReportPageOptions& options) {
+  std::vector<std::string> names;
+  std::vector<size_t> num_points;
+  for (int i = 0;; ++i) {
+    const fs::path path = fs::path(output_path) / std::to_string(i);
+    if (!fs::is_directory(path)) break;
+    colmap::Reconstruction model;
+    model.Read(path.string());
+    names.push_back(std::to_string(i));
+    num_points.push_back(model.NumPoints3D());
+  }
+  size_t total = 0;
+  for (const size_t n : num_points) total += n;
+  Json models = Json::array();
+  for (size_t m = 0; m < names.size(); ++m) {
+    const double quota = total == 0 ? 0.0
+                                    : double(options.max_drawn_points) *
+                                          double(num_points[m]) / double(total);
+    const size_t stride = quota <= 0 ? num_points[m] + 1
+                                     : size_t(std::ceil(num_points[m] / quota));
+    colmap::Reconstruction model;
+    model.Read((fs::path(output_path) / names[m]).string());
+    models.push_back(ModelData(model, names[m], stride));
+  }
+  return models;
+}
+
+Json KernelsData(const TmrTree& tree) {
+  Json kernels = Json::array();
+  for (const TmrKernelNode& k : tree.kernels) {
+    Json leaves = Json::array();
+    for (const auto& leaf : k.leaf_clusters) leaves.push_back(leaf.size());
+    kernels.push_back({{"exemplar", tree.image_names.at(k.exemplar)},
+                       {"kernel_images", k.kernel_images.size()},
+                       {"cluster_images", k.cluster_images.size()},
+                       {"leaves", std::move(leaves)}});
+  }
+  return kernels;
+}
+
+// The map: each image's place (on a 0..10,000 grid), kernel and leaf
+// cluster (-1: a kernel image; kernel -1: unclustered), the exemplars, and
+// the similarity graph's edges as (u, v, Jaccard weight in thousandths).
+Json MapData(const PartitionMap& map) {
+  const size_t n = map.layout.size();
+  std::vector<int> kernel(n, -1), leaf(n, -1);
+  Json exemplars = Json::array();
+  for (size_t k = 0; k < map.tree.kernels.size(); ++k) {
+    const TmrKernelNode& node = map.tree.kernels[k];
+    for (size_t l = 0; l < node.leaf_clusters.size(); ++l)
+      for (const int v : node.leaf_clusters[l]) kernel[v] = k, leaf[v] = l;
+    for (const int v : node.kernel_images) kernel[v] = k, leaf[v] = -1;
+    exemplars.push_back(node.exemplar);
+  }
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  for (const auto& p : map.layout) {
+    min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
+    min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
+  }
+  const double span = std::max({max_x - min_x, max_y - min_y, 1e-9});
+  Json xy = Json::array(), edges = Json::array();
+  for (const auto& p : map.layout) {
+    xy.push_back(std::lround((p[0] - min_x) / span * 10000));
+    xy.push_back(std::lround((p[1] - min_y) / span * 10000));
+  }
+  for (const WeightedEdge& e : map.similarity.Edges()) {
+    edges.push_back(e.u);
+    edges.push_back(e.v);
+    edges.push_back(std::lround(1000 * e.weight));
+  }
+  return {{"names", map.tree.image_names},
+          {"xy", std::move(xy)},
+          {"kernel", kernel},
+          {"leaf", leaf},
+          {"exemplars", std::move(exemplars)},
+          {"edges", std::move(edges)}};
+}
+
+Json ReadJsonFile(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("cannot read '" + path + "'");
+  try {
+    return Json::parse(file);
+  } catch (const Json::exception& e) {
+    throw std::runtime_error("'" + path + "' is not JSON: " + e.what());
+  }
+}
+
+// Replaces the first `marker` in `text` by `value`.
+void Fill(const std::string& marker, const std::string& value,
+          std::string* text) {
+  const size_t at = text->find(marker);
+  if (at == std::string::npos)
+    throw std::logic_error("report page template has no " + marker);
+  text->replace(at, marker.size(), value);
+}
+
+}  // namespace
+
+std::string ReportPageData(const std::string& output_path,
+                           const PartitionMap* map,
+                           const ReportPageOptions& options) {
+  if (!options.Check()) throw std::invalid_argument("bad ReportPageOptions");
+  Json data;
+  data["run"] = ReadJsonFile((fs::path(output_path) / "report.json").string());
+  if (map) {
+    data["kernels"] = KernelsData(map->tree);
+    data["unclustered"] = map->tree.unclustered.size();
+    data["map"] = MapData(*map);
+  } else {
+    std::ifstream tree_file(TmrTreeJsonPath(output_path));
+    const TmrTree tree = ReadTmrTreeJson(tree_file);
+    data["kernels"] = KernelsData(tree);
+    data["unclustered"] = tree.unclustered.size();
+    data["map"] = nullptr;
+  }
+  data["max_drawn_points"] = options.max_drawn_points;
+  data["models"] = ModelsData(output_path, options);
+  const fs::path evaluation = fs::path(output_path) / "eval.json";
+  data["evaluation"] = fs::is_regular_file(evaluation)
+                           ? ReadJsonFile(evaluation.string())
+                           : Json(nullptr);
+  return data.dump();
+}
+
+std::string ReportPageHtml(const std::string& data) {
+  // "</" only occurs inside JSON strings, where "<\/" reads the same; the
+  // script element then cannot be closed early.
+  std::string safe;
+  safe.reserve(data.size());
+  for (size_t i = 0; i < data.size(); ++i) {
+    safe += data[i];
+    if (data[i] == '<' && i + 1 < data.size() && data[i + 1] == '/')
+      safe += '\\';
+  }
+  std::string page = kReportPageTemplate;
+  Fill("/*TMR_STYLE*/", kReportPageStyle, &page);
+  Fill("/*TMR_DATA*/", safe, &page);
+  Fill("/*TMR_SCRIPT*/", kReportPageScript, &page);
+  return page;
+}
+
+void WriteRunPictures(const std::string& database_path,
+                      const MatchGraphOptions& match_graph,
+                      const std::string& output_path,
+                      const std::function<void(const std::string&)>& progress,
+                      const ReportPageOptions& options) {
+  const std::optional<PartitionMap> map = ReadRunPartitionMap(
+      database_path, match_graph, output_path, options.max_map_images);
+  if (map) {
+    DrawPartitionPicture(*map,
+                         (fs::path(output_path) / "partition.png").string());
+  } else if (progress) {
+    progress("partition.png and the report's map skipped: more than " +
+             std::to_string(options.max_map_images) + " images to draw");
+  }
+  const std::string page_path =
+      (fs::path(output_path) / "report.html").string();
+  const std::string page = ReportPageHtml(
+      ReportPageData(output_path, map ? &*map : nullptr, options));
+  if (!WriteFileAtomically(page_path, page))
+    throw std::runtime_error("cannot write '" + page_path + "'");
+  if (progress) {
+    char size[32];
+    std::snprintf(size, sizeof(size), "%.1f MB", page.size() / 1048576.0);
+    progress("report.html written (" + std::string(size) +
+             "; open it in a browser)");
+  }
+}
+
+}  // namespace tmr
