@@ -21,7 +21,12 @@ namespace tmr {
 // build time by cmake/embed_text_files.cmake.
 extern const char* const kReportPageTemplate;
 extern const char* const kReportPageStyle;
-extern const char* const kReportPageScript;
+extern const char* const kReportPageScript_common;
+extern const char* const kReportPageScript_models;
+extern const char* const kReportPageScript_partition;
+extern const char* const kReportPageScript_timeline;
+extern const char* const kReportPageScript_merges;
+extern const char* const kReportPageScript_main;
 
 namespace {
 
@@ -252,10 +257,18 @@ std::string ReportPageHtml(const std::string& data) {
     if (data[i] == '<' && i + 1 < data.size() && data[i + 1] == '/')
       safe += '\\';
   }
+  // The data last: its text (image names) may hold anything.
   std::string page = kReportPageTemplate;
   Fill("/*TMR_STYLE*/", kReportPageStyle, &page);
+  // The helpers, each section, then the script that draws them.
+  std::string script;
+  for (const char* part :
+       {kReportPageScript_common, kReportPageScript_models,
+        kReportPageScript_partition, kReportPageScript_timeline,
+        kReportPageScript_merges, kReportPageScript_main})
+    script += part;
+  Fill("/*TMR_SCRIPT*/", script, &page);
   Fill("/*TMR_DATA*/", safe, &page);
-  Fill("/*TMR_SCRIPT*/", kReportPageScript, &page);
   return page;
 }
 
