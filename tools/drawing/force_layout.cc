@@ -195,4 +195,18 @@ std::vector<Position> ForceDirectedLayout(const ImageGraph& graph,
   return p;
 }
 
+std::vector<std::array<double, 2>> LayoutInUnitSquare(
+    const std::vector<std::array<double, 2>>& layout) {
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  for (const std::array<double, 2>& p : layout) {
+    min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
+    min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
+  }
+  const double span = std::max({max_x - min_x, max_y - min_y, 1e-9});
+  std::vector<std::array<double, 2>> unit;
+  for (const std::array<double, 2>& p : layout)
+    unit.push_back({(p[0] - min_x) / span, (p[1] - min_y) / span});
+  return unit;
+}
+
 }  // namespace tmr

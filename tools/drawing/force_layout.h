@@ -40,4 +40,9 @@ struct ForceLayoutOptions {
 std::vector<std::array<double, 2>> ForceDirectedLayout(
     const ImageGraph& graph, const ForceLayoutOptions& options = {});
 
+// The layout moved and scaled into [0, 1] x [0, 1], its longer side
+// spanning it (the aspect kept), for drawing.
+std::vector<std::array<double, 2>> LayoutInUnitSquare(
+    const std::vector<std::array<double, 2>>& layout);
+
 }  // namespace tmr

@@ -39,21 +39,15 @@ bool DrawPartitionPicture(const PartitionMap& map, const std::string& png_path,
                           int size_px) {
   const ImageGraph& similarity = map.similarity;
   const TmrTree& tree = map.tree;
-  const std::vector<std::array<double, 2>>& layout = map.layout;
   const int n = similarity.NumVertices();
   if (n == 0) return false;
-  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
-  for (const std::array<double, 2>& p : layout) {
-    min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
-    min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
-  }
-  const double margin = 40,
-               span = std::max({max_x - min_x, max_y - min_y, 1e-9});
+  const std::vector<std::array<double, 2>> unit =
+      LayoutInUnitSquare(map.layout);
+  const double margin = 40;
   auto pixel = [&](int v) {
-    return cv::Point(static_cast<int>(margin + (layout[v][0] - min_x) / span *
-                                                   (size_px - 2 * margin)),
-                     static_cast<int>(margin + (layout[v][1] - min_y) / span *
-                                                   (size_px - 2 * margin)));
+    return cv::Point(
+        static_cast<int>(margin + unit[v][0] * (size_px - 2 * margin)),
+        static_cast<int>(margin + unit[v][1] * (size_px - 2 * margin)));
   };
   cv::Mat canvas(size_px, size_px, CV_8UC3, cv::Scalar(255, 255, 255));
   for (const WeightedEdge& e : similarity.Edges()) {

@@ -4,14 +4,18 @@
 #include <colmap/scene/reconstruction.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
+#include "drawing/force_layout.h"
 #include "tmr/io/atomic_file.h"
 #include "tmr/partition/tmr_tree.h"
 
@@ -67,84 +71,104 @@ void AppendAll(const Json& values, Json* out) {
   for (const Json& v : values) out->push_back(v);
 }
 
-// One model: its figures, its cameras (centre, then the viewing direction
-// and the image's right and down half-extents at unit depth, in
-// thousandths) and every `stride`-th of its points (by id) with colours.
-Json ModelData(const colmap::Reconstruction& model, const std::string& name,
-               size_t stride) {
+// What the page draws of one model, read once: its figures, its cameras
+// (centre, then the viewing direction and the image's right and down
+// half-extents at unit depth) by image id, and its points with colours by
+// point id.
+struct ModelContents {
+  Json figures;
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<std::array<Eigen::Vector3d, 3>> camera_axes;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Matrix<uint8_t, 3, 1>> colours;
+};
+
+ModelContents ReadModelContents(const std::string& path,
+                                const std::string& name) {
+  colmap::Reconstruction model;
+  model.Read(path);
+  ModelContents contents;
+  contents.figures = {
+      {"name", name},
+      {"registered", model.NumRegImages()},
+      {"points", model.NumPoints3D()},
+      {"observations", model.ComputeNumObservations()},
+      {"mean_reprojection_error_px", model.ComputeMeanReprojectionError()}};
   std::vector<colmap::image_t> image_ids = model.RegImageIds();
   std::sort(image_ids.begin(), image_ids.end());
-  std::vector<colmap::point3D_t> point_ids;
-  for (const auto& [id, point] : model.Points3D()) point_ids.push_back(id);
-  std::sort(point_ids.begin(), point_ids.end());
-  std::vector<Eigen::Vector3d> drawn;
-  for (const colmap::image_t id : image_ids)
-    drawn.push_back(model.Image(id).ProjectionCenter());
-  std::vector<colmap::point3D_t> drawn_points;
-  for (size_t i = 0; i < point_ids.size(); i += std::max<size_t>(stride, 1))
-    drawn_points.push_back(point_ids[i]);
-  for (const colmap::point3D_t id : drawn_points)
-    drawn.push_back(model.Point3D(id).xyz);
-  const Grid grid = GridOf(drawn);
-  Json cameras = Json::array(), xyz = Json::array(), rgb = Json::array();
   for (const colmap::image_t id : image_ids) {
     const colmap::Image& image = model.Image(id);
     const colmap::Camera& camera = *image.CameraPtr();
     const Eigen::Matrix3d r =
         image.CamFromWorld().rotation().toRotationMatrix();
     const double f = std::max(camera.MeanFocalLength(), 1e-9);
-    AppendAll(grid.Quantized(image.ProjectionCenter()), &cameras);
-    const Eigen::Vector3d axes[3] = {
-        r.row(2).transpose(), r.row(0).transpose() * camera.width / (2 * f),
-        r.row(1).transpose() * camera.height / (2 * f)};
-    for (const Eigen::Vector3d& axis : axes)
+    contents.centres.push_back(image.ProjectionCenter());
+    contents.camera_axes.push_back(
+        {r.row(2).transpose(), r.row(0).transpose() * camera.width / (2 * f),
+         r.row(1).transpose() * camera.height / (2 * f)});
+  }
+  std::vector<colmap::point3D_t> point_ids;
+  for (const auto& [id, point] : model.Points3D()) point_ids.push_back(id);
+  std::sort(point_ids.begin(), point_ids.end());
+  for (const colmap::point3D_t id : point_ids) {
+    contents.points.push_back(model.Point3D(id).xyz);
+    contents.colours.push_back(model.Point3D(id).color);
+  }
+  return contents;
+}
+
+// One model's data: its figures, its cameras (on the grid, then the axes
+// in thousandths) and every `stride`-th of its points with colours.
+Json ModelData(const ModelContents& contents, size_t stride) {
+  std::vector<size_t> drawn_points;
+  for (size_t i = 0; i < contents.points.size();
+       i += std::max<size_t>(stride, 1))
+    drawn_points.push_back(i);
+  std::vector<Eigen::Vector3d> drawn = contents.centres;
+  for (const size_t i : drawn_points) drawn.push_back(contents.points[i]);
+  const Grid grid = GridOf(drawn);
+  Json cameras = Json::array(), xyz = Json::array(), rgb = Json::array();
+  for (size_t c = 0; c < contents.centres.size(); ++c) {
+    AppendAll(grid.Quantized(contents.centres[c]), &cameras);
+    for (const Eigen::Vector3d& axis : contents.camera_axes[c])
       for (int k = 0; k < 3; ++k)
         cameras.push_back(std::lround(1000 * axis(k)));
   }
-  for (const colmap::point3D_t id : drawn_points) {
-    const colmap::Point3D& point = model.Point3D(id);
-    AppendAll(grid.Quantized(point.xyz), &xyz);
-    for (int k = 0; k < 3; ++k) rgb.push_back(int(point.color(k)));
+  for (const size_t i : drawn_points) {
+    AppendAll(grid.Quantized(contents.points[i]), &xyz);
+    for (int k = 0; k < 3; ++k) rgb.push_back(int(contents.colours[i](k)));
   }
-  return {{"name", name},
-          {"registered", model.NumRegImages()},
-          {"points", model.NumPoints3D()},
-          {"observations", model.ComputeNumObservations()},
-          {"mean_reprojection_error_px", model.ComputeMeanReprojectionError()},
-          {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
-          {"step", grid.step},
-          {"cameras", std::move(cameras)},
-          {"points_drawn", drawn_points.size()},
-          {"xyz", std::move(xyz)},
-          {"rgb", std::move(rgb)}};
+  Json data = contents.figures;
+  data["origin"] = {grid.origin.x(), grid.origin.y(), grid.origin.z()};
+  data["step"] = grid.step;
+  data["cameras"] = std::move(cameras);
+  data["points_drawn"] = drawn_points.size();
+  data["xyz"] = std::move(xyz);
+  data["rgb"] = std::move(rgb);
+  return data;
 }
 
-// The run's models output_path/0, 1, ..., in order, each read once to count
-// its points and once to draw them (one model in memory at a time).
+// The run's models output_path/0, 1, ..., in order, each read once (one
+// model in memory at a time; what the page draws of each kept).
 Json ModelsData(const std::string& output_path,
                 const ReportPageOptions& options) {
-  std::vector<std::string> names;
-  std::vector<size_t> num_points;
+  std::vector<ModelContents> contents;
+  size_t total = 0;
   for (int i = 0;; ++i) {
     const fs::path path = fs::path(output_path) / std::to_string(i);
     if (!fs::is_directory(path)) break;
-    colmap::Reconstruction model;
-    model.Read(path.string());
-    names.push_back(std::to_string(i));
-    num_points.push_back(model.NumPoints3D());
+    contents.push_back(ReadModelContents(path.string(), std::to_string(i)));
+    total += contents.back().points.size();
   }
-  size_t total = 0;
-  for (const size_t n : num_points) total += n;
   Json models = Json::array();
-  for (size_t m = 0; m < names.size(); ++m) {
+  for (const ModelContents& model : contents) {
+    const size_t num_points = model.points.size();
     const double quota = total == 0 ? 0.0
                                     : double(options.max_drawn_points) *
-                                          double(num_points[m]) / double(total);
-    const size_t stride = quota <= 0 ? num_points[m] + 1
-                                     : size_t(std::ceil(num_points[m] / quota));
-    colmap::Reconstruction model;
-    model.Read((fs::path(output_path) / names[m]).string());
-    models.push_back(ModelData(model, names[m], stride));
+                                          double(num_points) / double(total);
+    const size_t stride =
+        quota <= 0 ? num_points + 1 : size_t(std::ceil(num_points / quota));
+    models.push_back(ModelData(model, stride));
   }
   return models;
 }
@@ -176,16 +200,10 @@ Json MapData(const PartitionMap& map) {
     for (const int v : node.kernel_images) kernel[v] = k, leaf[v] = -1;
     exemplars.push_back(node.exemplar);
   }
-  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
-  for (const auto& p : map.layout) {
-    min_x = std::min(min_x, p[0]), max_x = std::max(max_x, p[0]);
-    min_y = std::min(min_y, p[1]), max_y = std::max(max_y, p[1]);
-  }
-  const double span = std::max({max_x - min_x, max_y - min_y, 1e-9});
   Json xy = Json::array(), edges = Json::array();
-  for (const auto& p : map.layout) {
-    xy.push_back(std::lround((p[0] - min_x) / span * 10000));
-    xy.push_back(std::lround((p[1] - min_y) / span * 10000));
+  for (const auto& p : LayoutInUnitSquare(map.layout)) {
+    xy.push_back(std::lround(p[0] * 10000));
+    xy.push_back(std::lround(p[1] * 10000));
   }
   for (const WeightedEdge& e : map.similarity.Edges()) {
     edges.push_back(e.u);
