@@ -13,7 +13,9 @@
 #   merges one group alone, and `merge` merges the others and joins them
 #   into the models of the whole merge: one model of every image, no wrong
 #   merge, median rotation error below 0.15 degrees (the join does not
-#   adjust its seams; 0.075 measured, 0.025 whole).
+#   adjust its seams; 0.075 measured, 0.025 whole); the plan lists the
+#   pairs of groups that the join links, and the join aligns them a pair
+#   of groups at a time.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
@@ -75,6 +77,14 @@ endif()
 run(${TMR_MAPPER} merge --plan ${parts}/plan.txt)
 if(NOT last_output MATCHES "group 0: merged by an earlier run")
   message(FATAL_ERROR "group 0 merged again:\n${last_output}")
+endif()
+file(READ ${parts}/plan.txt plan)
+if(NOT plan MATCHES "\nmerge\\.0 [^\n]* links=[1-9]")
+  message(FATAL_ERROR "group 0 is linked to no group:\n${plan}")
+endif()
+file(READ ${parts}/report.json report)
+if(NOT report MATCHES "join: align groups 0 and [1-9]")
+  message(FATAL_ERROR "the join aligned no pair of groups:\n${report}")
 endif()
 score(parts ${parts})
 if(NOT parts_models EQUAL merged_models OR NOT parts_registered EQUAL merged_registered

@@ -69,14 +69,14 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   return held + std::max(longest, block);
 }
 
-double JoinPeakMiB(const MemoryLoad& largest_group, const MemoryLoad& seams) {
-  // The light copies of the models, beside the group model being read or
-  // the correspondences; then one group's models alone.
+double JoinPeakMiB(const MemoryLoad& largest_group,
+                   const MemoryLoad& pair_seams) {
   const double group =
       kModelsPerMatchedKeypoint * largest_group.matched_keypoints / kMiB;
-  return kProcessMiB +
-         kModelsPerMatchedKeypoint * seams.matched_keypoints / kMiB +
-         std::max(CorrespondencesMiB(seams), group);
+  const double pair =
+      kModelsPerMatchedKeypoint * pair_seams.matched_keypoints / kMiB +
+      CorrespondencesMiB(pair_seams);
+  return kProcessMiB + std::max(pair, group);
 }
 
 MemoryBudget ResolveMemoryBudget(double budget_gib) {

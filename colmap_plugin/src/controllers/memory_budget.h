@@ -37,11 +37,13 @@ double CorrespondencesMiB(const MemoryLoad& scene);
 // `max_block_images` images (0: the whole scene) with all their points.
 double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
                     int max_block_images);
-// The join of a merge stage by parts (docs/distributed.md): the light
-// copies of the models on the `seams` (MakeSeamModel), beside either the
-// seams' correspondences or one group's models (`largest_group`'s load),
-// read one group at a time.
-double JoinPeakMiB(const MemoryLoad& largest_group, const MemoryLoad& seams);
+// The join of a merge stage by parts (docs/distributed.md), one step at a
+// time: one group's models (`largest_group`'s load), read to make their
+// light copies or to write the scenes; or the light copies of two linked
+// groups beside the correspondences of their seams (`pair_seams`, the
+// largest such pair's load).
+double JoinPeakMiB(const MemoryLoad& largest_group,
+                   const MemoryLoad& pair_seams);
 
 // The memory every step must fit (--Tmr.memory_budget).
 struct MemoryBudget {

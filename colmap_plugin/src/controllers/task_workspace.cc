@@ -104,6 +104,10 @@ std::string TaskWorkspace::GroupModels(int g) const {
   return (folder_ / ("group" + std::to_string(g))).string();
 }
 
+std::string TaskWorkspace::GroupSeamModels(int g) const {
+  return (folder_ / ("group" + std::to_string(g) + "_seams")).string();
+}
+
 std::string TaskWorkspace::JoinDatabase() const {
   return (folder_ / "join.db").string();
 }

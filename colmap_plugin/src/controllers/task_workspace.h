@@ -49,10 +49,13 @@ class TaskWorkspace {
   // A task database of all images, for the merges and the completion.
   std::string MergeDatabase() const;
   // A merge stage by parts: group g's task database and its models
-  // (folder/0, 1, ... and a record, TmrMapperStages::MergeGroup), and the
-  // task database of the images several groups hold, for the join.
+  // (folder/0, 1, ... and a record, TmrMapperStages::MergeGroup), the
+  // join's light copies of those models (MakeSeamModel, folder/0, 1, ...),
+  // and the task database of the seam images of the two groups the join
+  // links at a time.
   std::string GroupDatabase(int g) const;
   std::string GroupModels(int g) const;
+  std::string GroupSeamModels(int g) const;
   std::string JoinDatabase() const;
 
   // Whether the task whose model is `model` has finished: its record and

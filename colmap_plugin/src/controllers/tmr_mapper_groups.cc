@@ -7,8 +7,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 #include "controllers/memory_budget.h"
@@ -118,8 +120,17 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
     if (load.matched_keypoints > largest.matched_keypoints) largest = load;
   }
   seam_images_ = SeamImages(graph);
-  memory_mib_["merge"] =
-      JoinPeakMiB(largest, LoadOfImages(graph, seam_images_));
+  LinkGroups(graph);
+  // The join aligns one linked pair of groups at a time.
+  MemoryLoad largest_pair;
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    for (const int h : groups_[g].links) {
+      const MemoryLoad pair = LoadOfImages(graph, PairSeamImages(g, h));
+      if (pair.matched_keypoints > largest_pair.matched_keypoints)
+        largest_pair = pair;
+    }
+  }
+  memory_mib_["merge"] = JoinPeakMiB(largest, largest_pair);
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
@@ -155,6 +166,36 @@ std::vector<int> TmrMapperStages::SeamImages(const MatchGraph& graph) const {
   return seams;
 }
 
+void TmrMapperStages::LinkGroups(const MatchGraph& graph) {
+  std::vector<std::vector<int>> groups_of(graph.NumImages());
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g)
+    for (const int i : GroupImages(groups_[g])) groups_of.at(i).push_back(g);
+  std::vector<std::set<int>> links(groups_.size());
+  const auto link = [&](int g, int h) {
+    if (g != h) links[std::min(g, h)].insert(std::max(g, h));
+  };
+  for (const std::vector<int>& holders : groups_of)
+    for (const int g : holders)
+      for (const int h : holders) link(g, h);
+  for (const MatchGraphPair& pair : graph.pairs)
+    for (const int g : groups_of[pair.image1])
+      for (const int h : groups_of[pair.image2]) link(g, h);
+  for (size_t g = 0; g < groups_.size(); ++g)
+    groups_[g].links.assign(links[g].begin(), links[g].end());
+}
+
+std::vector<int> TmrMapperStages::PairSeamImages(int g, int h) const {
+  std::vector<int> images = GroupImages(groups_.at(g));
+  const std::vector<int> other = GroupImages(groups_.at(h));
+  images.insert(images.end(), other.begin(), other.end());
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end()), images.end());
+  std::vector<int> seams;
+  std::set_intersection(images.begin(), images.end(), seam_images_.begin(),
+                        seam_images_.end(), std::back_inserter(seams));
+  return seams;
+}
+
 std::string TmrMapperStages::GroupPlanLines() const {
   std::string lines;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
@@ -162,7 +203,7 @@ std::string TmrMapperStages::GroupPlanLines() const {
     lines += "merge." + std::to_string(g) + " " +
              std::to_string(group.num_images) + " 0 " +
              std::to_string(std::lround(group.memory_mib)) + " " +
-             GroupContent(group) + "\n";
+             GroupContent(group) + " links=" + JoinNumbers(group.links) + "\n";
   }
   if (!groups_.empty()) {
     lines += "seams " + std::to_string(seam_images_.size()) + " 0 0 " +
@@ -187,8 +228,10 @@ bool TmrMapperStages::ReadGroupPlanLine(const std::string& id, int images,
   group.memory_mib = mib;
   while (*rest >> list) {
     const size_t eq = list.find('=');
-    (list.substr(0, eq) == "kernels" ? group.kernels : group.extra_images) =
-        ReadNumbers(list.substr(eq + 1));
+    const std::string name = list.substr(0, eq);
+    (name == "kernels" ? group.kernels
+     : name == "links" ? group.links
+                       : group.extra_images) = ReadNumbers(list.substr(eq + 1));
   }
   groups_.push_back(std::move(group));
   memory_mib_[id] = mib;
@@ -221,7 +264,8 @@ bool TmrMapperStages::GroupsFitTheTree() const {
   };
   for (const ClusterGroup& group : groups_) {
     if (!in_range(group.kernels, static_cast<int>(times_grouped.size())) ||
-        !in_range(group.extra_images, num_images))
+        !in_range(group.extra_images, num_images) ||
+        !in_range(group.links, static_cast<int>(groups_.size())))
       return false;
     for (const int k : group.kernels) ++times_grouped[k];
   }

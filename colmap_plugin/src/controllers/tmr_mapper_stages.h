@@ -20,6 +20,7 @@
 namespace tmr {
 
 class SceneAssembler;
+struct ModelPairAlignment;
 
 // The steps of tmr_mapper (paper Sec. 5) on its work folder
 // (output_path/.tmr_work), each with its inputs and outputs on disk: the
@@ -44,6 +45,9 @@ class TmrMapperStages {
     std::vector<int> extra_images;  // tree indices
     int num_images = 0;             // all of its images
     double memory_mib = 0.0;        // its merge's expected peak
+    // The later groups that images both hold or verified pairs link it to
+    // (the pairs of groups that the join aligns).
+    std::vector<int> links;
   };
 
   explicit TmrMapperStages(const TmrMapperOptions& options);
@@ -149,11 +153,13 @@ class TmrMapperStages {
   // the work folder; reused when they are there already.
   bool MergeGroup(int g, int num_threads, const Record& record,
                   const Progress& progress, std::string* error) const;
-  // Then the join (tmr_mapper_join.cc): the groups' models placed by the
-  // images that several groups hold (SceneAssembler::Join on their
-  // MakeSeamModel copies), each scene written to output_path piece by piece
-  // (ModelWriter), one group's model in memory at a time. Every group must
-  // have been merged.
+  // Then the join (tmr_mapper_join.cc): light copies of the groups' models
+  // (MakeSeamModel, one group's models in memory at a time), each linked
+  // pair of groups aligned on the correspondences of its seams
+  // (SceneAssembler::AlignModelPairs, two groups' light copies in memory),
+  // the models placed by one similarity averaging (PlaceJoin), each scene
+  // written to output_path piece by piece (ModelWriter), one group's model
+  // in memory at a time. Every group must have been merged.
   bool JoinGroups(int num_threads, const Record& record,
                   const Progress& progress, TmrMapperReport* report,
                   std::string* error) const;
@@ -189,9 +195,16 @@ class TmrMapperStages {
   // loads: those several groups hold, and those of verified pairs across
   // groups.
   std::vector<int> SeamImages(const MatchGraph& graph) const;
+  // Each group's links (ClusterGroup::links): images both hold, or
+  // verified pairs between their images.
+  void LinkGroups(const MatchGraph& graph);
+  // The seam images that the join loads to align groups g and h: those of
+  // either group (tree indices, sorted).
+  std::vector<int> PairSeamImages(int g, int h) const;
   // The plan.txt lines of the merge stage by parts, which ReadPlanMemory
   // reads back: one per group ("merge.G IMAGES 0 MIB kernels=K,...
-  // extra=I,...", extra maybe empty), then "seams N 0 0 I,...".
+  // extra=I,... links=G,...", extra and links maybe empty), then
+  // "seams N 0 0 I,...".
   std::string GroupPlanLines() const;
   // Whether the groups read from a plan name kernels and images of the
   // tree, each kernel in one group.
@@ -215,6 +228,17 @@ class TmrMapperStages {
   // of an earlier run beyond them, reports the weak links.
   void FinishScenes(size_t num_scenes, std::vector<TmrWeakLink> weak_links,
                     const Progress& progress, TmrMapperReport* report) const;
+  // The join's steps (tmr_mapper_join.cc): the pairs of groups it aligns
+  // (ClusterGroup::links; every pair for a plan written without them),
+  // and the alignments of one such pair's models on the correspondences of
+  // its seams (PairSeamImages), appended to *aligned in the join's
+  // numbering of `entries`.
+  struct JoinEntry;
+  std::vector<std::pair<int, int>> LinkedGroupPairs() const;
+  bool AlignGroupPair(int g, int h, const std::vector<JoinEntry>& entries,
+                      int num_threads, const Record& record,
+                      std::vector<ModelPairAlignment>* aligned,
+                      std::string* error) const;
   // Reads the expected memory of every step from plan.txt (0 where an
   // older plan has none).
   bool ReadPlanMemory(std::string* error);

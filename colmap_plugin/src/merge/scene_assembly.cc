@@ -116,24 +116,6 @@ std::vector<std::shared_ptr<colmap::Reconstruction>> SceneAssembler::Assemble(
   return ModelsLargestFirst(&scenes);
 }
 
-std::vector<JoinedScene> SceneAssembler::Join(
-    std::vector<std::shared_ptr<colmap::Reconstruction>> models) const {
-  Scenes scenes;
-  for (int m = 0; m < static_cast<int>(models.size()); ++m) {
-    const size_t size = models[m]->NumRegImages();
-    scenes.push_back({std::move(models[m]), false, size, {}, {{m, {}, {}}}});
-  }
-  models.clear();
-  // AlignAllScenes also keeps one copy of each image.
-  AlignAllScenes(&scenes, /*joining=*/true);
-  DropSmallModels(&scenes);
-  SortBySize(&scenes);
-  std::vector<JoinedScene> joined;
-  for (AssemblyScene& scene : scenes)
-    joined.push_back({std::move(scene.model), std::move(scene.pieces)});
-  return joined;
-}
-
 void SceneAssembler::DropSmallModels(Scenes* scenes) const {
   // As COLMAP's mapper: with several models, those below min_model_size
   // images (at most 80% of all) are dropped; their photos stay unregistered.
@@ -146,11 +128,16 @@ void SceneAssembler::DropSmallModels(Scenes* scenes) const {
     images += static_cast<int>(scenes->back().model->NumRegImages());
     scenes->pop_back();  // largest first
   }
-  if (dropped > 0) {
-    record_({"drop " + std::to_string(dropped) + " models of fewer than " +
-                 std::to_string(min_size) + " images (Mapper.min_model_size)",
-             images, 0, 0.0, true, "their images stay unregistered"});
-  }
+  RecordDroppedModels(dropped, images);
+}
+
+void SceneAssembler::RecordDroppedModels(int num_dropped,
+                                         int num_images) const {
+  if (num_dropped == 0) return;
+  record_({"drop " + std::to_string(num_dropped) + " models of fewer than " +
+               std::to_string(MinModelSize()) +
+               " images (Mapper.min_model_size)",
+           num_images, 0, 0.0, true, "their images stay unregistered"});
 }
 
 size_t SceneAssembler::MinModelSize() const {
@@ -245,8 +232,8 @@ void SceneAssembler::Refine(
     adjustment.parallel_block_images = o_.parallel_block_images;
     adjustment.num_workers = o_.num_threads;
   }
-  const MergedModelRefinement refinement = RefineMergedModel(
-      cache_, o_.mapper, adjustment, scene->model);
+  const MergedModelRefinement refinement =
+      RefineMergedModel(cache_, o_.mapper, adjustment, scene->model);
   ReleaseFreedMemory();
   const int images = static_cast<int>(scene->model->NumRegImages());
   const bool full =

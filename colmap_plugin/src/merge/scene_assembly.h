@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -15,6 +16,7 @@
 
 #include "merge/merged_model_refinement.h"
 #include "merge/shared_track_alignment.h"
+#include "merge/similarity_averaging.h"
 #include "sfm/model_edits.h"
 #include "tmr/colmap/task_report.h"
 
@@ -59,22 +61,53 @@ struct SceneAssemblyOptions {
 int RemoveUnanchoredImages(const std::unordered_set<colmap::image_t>& before,
                            int min_anchored, colmap::Reconstruction* scene);
 
-// One model of a join (SceneAssembler::Join) as a part of a joined scene:
-// its index among the joined models, the similarity that places it in the
-// scene, and its images whose copy in another model was kept instead.
+// Two linked models of an assembly or a join, aligned
+// (SceneAssembler::AlignModelPairs): how strongly verified pairs link them,
+// how the alignment went, and, when it held, the link it gives the
+// similarity averaging (model2's points on the seam).
+struct ModelPairAlignment {
+  int model1 = 0;  // model1 < model2
+  int model2 = 0;
+  int num_pairs = 0;  // verified image pairs between them
+  int num_correspondences = 0;
+  ModelAlignment alignment;  // model1_from_model2 when it succeeded
+  double seconds = 0;
+  std::optional<SimilarityLink> link;
+};
+
+// A report row per aligned pair (`model_sizes` by model number): held by
+// the averaging (link_pair: each averaged link's index in `pairs`), or why
+// not, with the pair's models in `link`. The alignments ran in parallel
+// inside their "align ... at once" step, so the rows take no time of
+// their own in the assembly's chain of steps.
+std::vector<TmrTaskReport> LinkRows(
+    const std::vector<size_t>& model_sizes,
+    const std::vector<ModelPairAlignment>& pairs,
+    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed);
+
+// What a join (SceneAssembler::PlaceJoin) knows of one of its models
+// without holding it: its registered images, and the number of 3D points
+// of each of those images that another model may hold too (the seams),
+// which decides the copy kept (KeepOneCopyOfEachImage's rule).
+struct JoinModel {
+  size_t num_images = 0;
+  std::unordered_map<colmap::image_t, size_t> seam_image_points;
+};
+
+// One model of a join as a part of a joined scene: its index among the
+// joined models, the similarity that places it in the scene, and its
+// images whose copy in another model was kept instead.
 struct JoinPiece {
   int model = 0;
   colmap::Sim3d scene_from_model;
   std::vector<colmap::image_t> dropped_images;
 };
 
-// A scene of a join: the joined models (light ones, MakeSeamModel, where the
-// whole ones do not fit in memory together) and how to make it again from
-// the whole models, piece after piece in order (as AppendReconstruction
-// appended them).
+// A scene of a join: how to make it from the whole models, piece after
+// piece in order, and its registered images.
 struct JoinedScene {
-  std::shared_ptr<colmap::Reconstruction> model;
   std::vector<JoinPiece> pieces;
+  size_t num_images = 0;
 };
 
 // A scene model and its refinement state, carried through the passes of
@@ -89,8 +122,6 @@ struct AssemblyScene {
   size_t refined_size = 0;
   // Registered images before the current late pass (RefineLateMerges).
   std::unordered_set<colmap::image_t> held;
-  // In a join, the models it was joined from.
-  std::vector<JoinPiece> pieces;
 };
 
 // Orders scenes by registered images, largest first.
@@ -101,8 +132,8 @@ std::string DescribeFit(const ModelAlignment& alignment);
 
 // The last steps of tmr_mapper (paper Sec. 5, after the tasks of the tree):
 // image-cluster models become scene models by the shared-track merge rule
-// (merge/shared_track_alignment.h) or by images registered on the scene's points
-// (merge/registration_alignment.h), then COLMAP's mapper completes them
+// (merge/shared_track_alignment.h) or by images registered on the scene's
+// points (merge/registration_alignment.h), then COLMAP's mapper completes them
 // with the images no model holds, and maps from scratch what is still left
 // (the image-cluster models come from merge/cluster_merge.h). How two
 // models are linked and aligned (Links, LinkedScenes, Align, WeakLinks) is
@@ -135,16 +166,29 @@ class SceneAssembler {
       const std::vector<std::shared_ptr<colmap::Reconstruction>>& models,
       bool drop_small_models = true) const;
 
-  // The join of a merge stage by parts (docs/distributed.md): the models
-  // of the groups, each assembled on its own, placed by AlignAllScenes
-  // without adjustment (the images two groups register hold the seams; the
-  // correspondences need only be those of such images), one copy of each
-  // image kept, the models below MinModelSize dropped when there are
-  // several. Returns the scenes, largest first, each with the pieces it
-  // was made of. Each model appended into another is freed once appended,
-  // unless the caller holds it too.
-  std::vector<JoinedScene> Join(
-      std::vector<std::shared_ptr<colmap::Reconstruction>> models) const;
+  // Every linked pair of `models` (verified pairs between them, or images
+  // both hold) that `wanted` accepts (all when null) aligned by Align, in
+  // parallel on options.num_threads, in the order of (model1, model2).
+  std::vector<ModelPairAlignment> AlignModelPairs(
+      const std::vector<const colmap::Reconstruction*>& models,
+      bool images_first,
+      const std::function<bool(int, int)>& wanted = nullptr) const;
+
+  // The join of a merge stage by parts (docs/distributed.md), from the
+  // alignments of its linked models (AlignModelPairs, run pair of groups
+  // by pair of groups, each on the correspondences of its seams only, so
+  // that no step holds every group's seams): one similarity averaging
+  // places the models, each image keeps the copy with the most points (the
+  // lower model number on a tie), each connected part becomes a scene of
+  // its models in order, and the scenes below MinModelSize go when there
+  // are several. `models` are numbered largest first, as AlignAllScenes
+  // numbers them. Returns the scenes largest first, and in *weak_links the
+  // scenes that verified pairs link but the alignments or the averaging
+  // kept apart (from their strongest model pair). Needs no correspondences.
+  std::vector<JoinedScene> PlaceJoin(
+      const std::vector<JoinModel>& models,
+      std::vector<ModelPairAlignment> pairs,
+      std::vector<TmrWeakLink>* weak_links) const;
 
   // Every pair of `scenes` (the final models, in output order) that
   // verified pairs link: how strongly, and why Align keeps them apart.
@@ -173,13 +217,13 @@ class SceneAssembler {
   // averaging of those alignments (AverageSimilarities); each connected
   // part appended into its largest model in the averaged frame, left to
   // RefineMergedScenes for its one adjustment (scene_averaging.cc),
-  // adjusted first on its longest tracks. `joining` (Join): the models
-  // aligned on the images they share first (Align's images_first), and
-  // not adjusted.
-  void AlignAllScenes(Scenes* scenes, bool joining = false) const;
+  // adjusted first on its longest tracks.
+  void AlignAllScenes(Scenes* scenes) const;
   // With several scenes, those below MinModelSize go, largest first; their
   // images stay unregistered.
   void DropSmallModels(Scenes* scenes) const;
+  // DropSmallModels' report row, when it dropped any.
+  void RecordDroppedModels(int num_dropped, int num_images) const;
   // Mapper.min_model_size, at most 80% of the images (as COLMAP's mapper).
   size_t MinModelSize() const;
 

@@ -3,13 +3,13 @@
 // models aligned at once, in parallel, then one similarity averaging over
 // the graph of models, and each connected part appended into its largest
 // model without adjustment between.
-#include <colmap/util/logging.h>
 #include <colmap/util/threading.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -58,8 +58,10 @@ void AddSeamPoints(const colmap::Reconstruction& model,
 }
 
 // Two models that verified pairs link, or that share images (model1 <
-// model2): their verified matches, and model2's images on the seam.
+// model2): their verified image pairs and matches, and model2's images on
+// the seam.
 struct ModelPair {
+  int num_pairs = 0;
   int num_correspondences = 0;
   std::vector<colmap::image_t> seam_images;
 };
@@ -90,6 +92,7 @@ std::map<std::pair<int, int>, ModelPair> LinkedPairs(
         for (const int a : it->second) {
           if (a >= b) continue;
           ModelPair& pair = pairs[{a, b}];
+          ++pair.num_pairs;
           pair.num_correspondences += num_correspondences;
           if (linked.insert(a).second) pair.seam_images.push_back(id);
         }
@@ -99,28 +102,49 @@ std::map<std::pair<int, int>, ModelPair> LinkedPairs(
   return pairs;
 }
 
-// A report row per linked pair: held by the averaging, or why not. Its
-// alignment ran in parallel inside the "align ... at once" step, so the row
-// takes no time of its own in the assembly's chain of steps.
+// Keeps one copy of each image that the first n scenes share (halos), then
+// appends each of those scenes that is not its part's root (placed.part)
+// into the root, moved by its placement. Returns the number of parts, and
+// in *num_copies the copies taken out.
+int AppendIntoParts(const SimilarityAveraging& placed, int n,
+                    std::vector<AssemblyScene>* scenes, int* num_copies) {
+  std::vector<colmap::Reconstruction*> editable;
+  for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
+  *num_copies = KeepOneCopyOfEachImage(editable);
+  int num_parts = 0;
+  for (int m = 0; m < n; ++m) {
+    const int root = placed.part[m];
+    if (root == m) {
+      ++num_parts;
+      continue;
+    }
+    AppendReconstruction(*(*scenes)[m].model, placed.part_from_model[m],
+                         (*scenes)[root].model.get());
+    (*scenes)[root].unrefined = true;
+    (*scenes)[m].model.reset();  // freed here unless the caller holds it
+  }
+  return num_parts;
+}
+
+}  // namespace
+
 std::vector<TmrTaskReport> LinkRows(
-    const std::vector<const colmap::Reconstruction*>& models,
-    const std::vector<std::pair<int, int>>& keys,
-    const std::vector<ModelAlignment>& alignments,
-    const std::vector<double>& seconds, const std::vector<size_t>& link_pair,
-    const SimilarityAveraging& placed) {
+    const std::vector<size_t>& model_sizes,
+    const std::vector<ModelPairAlignment>& pairs,
+    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed) {
   std::vector<TmrTaskReport> rows;
-  for (size_t p = 0; p < keys.size(); ++p) {
-    const int a = static_cast<int>(models[keys[p].first]->NumRegImages());
-    const int b = static_cast<int>(models[keys[p].second]->NumRegImages());
-    rows.push_back({"link of models of " + std::to_string(b) + " and " +
-                        std::to_string(a) + " images",
-                    b, 0, 0.0, false,
-                    (alignments[p].success ? DescribeFit(alignments[p])
-                                           : alignments[p].reason) +
-                        " (aligned in " +
-                        std::to_string(std::lround(seconds[p] * 1000)) +
-                        " ms)"});
-    rows.back().link = {keys[p].first, keys[p].second, a, b};
+  for (const ModelPairAlignment& pair : pairs) {
+    const int a = static_cast<int>(model_sizes.at(pair.model1));
+    const int b = static_cast<int>(model_sizes.at(pair.model2));
+    const ModelAlignment& alignment = pair.alignment;
+    rows.push_back(
+        {"link of models of " + std::to_string(b) + " and " +
+             std::to_string(a) + " images",
+         b, 0, 0.0, false,
+         (alignment.success ? DescribeFit(alignment) : alignment.reason) +
+             " (aligned in " +
+             std::to_string(std::lround(pair.seconds * 1000)) + " ms)"});
+    rows.back().link = {pair.model1, pair.model2, a, b};
   }
   for (size_t l = 0; l < link_pair.size(); ++l) {
     TmrTaskReport& row = rows[link_pair[l]];
@@ -132,105 +156,84 @@ std::vector<TmrTaskReport> LinkRows(
   return rows;
 }
 
-// Keeps one copy of each image that the first n scenes share (halos), then
-// appends each of those scenes that is not its part's root (placed.part)
-// into the root, moved by its placement, with its join pieces. Returns the
-// number of parts, and in *num_copies the copies taken out.
-int AppendIntoParts(const SimilarityAveraging& placed, int n,
-                    std::vector<AssemblyScene>* scenes, int* num_copies) {
-  std::vector<colmap::Reconstruction*> editable;
-  for (int m = 0; m < n; ++m) editable.push_back((*scenes)[m].model.get());
-  std::vector<std::vector<colmap::image_t>> dropped;
-  *num_copies = KeepOneCopyOfEachImage(editable, &dropped);
-  for (int m = 0; m < n; ++m) {
-    std::vector<JoinPiece>& pieces = (*scenes)[m].pieces;
-    if (!pieces.empty()) {  // a join's model, as it entered
-      THROW_CHECK_EQ(pieces.size(), 1);
-      pieces[0].dropped_images = std::move(dropped[m]);
-    }
+std::vector<ModelPairAlignment> SceneAssembler::AlignModelPairs(
+    const std::vector<const colmap::Reconstruction*>& models, bool images_first,
+    const std::function<bool(int, int)>& wanted) const {
+  std::map<std::pair<int, int>, ModelPair> linked =
+      LinkedPairs(models, image_links_);
+  std::vector<ModelPairAlignment> pairs;
+  std::vector<const ModelPair*> seams;
+  for (const auto& [key, pair] : linked) {
+    if (wanted && !wanted(key.first, key.second)) continue;
+    ModelPairAlignment aligned;
+    aligned.model1 = key.first;
+    aligned.model2 = key.second;
+    aligned.num_pairs = pair.num_pairs;
+    aligned.num_correspondences = pair.num_correspondences;
+    pairs.push_back(std::move(aligned));
+    seams.push_back(&pair);
   }
-  int num_parts = 0;
-  for (int m = 0; m < n; ++m) {
-    const int root = placed.part[m];
-    if (root == m) {
-      ++num_parts;
-      continue;
-    }
-    AppendReconstruction(*(*scenes)[m].model, placed.part_from_model[m],
-                         (*scenes)[root].model.get());
-    for (JoinPiece& piece : (*scenes)[m].pieces) {
-      piece.scene_from_model =
-          placed.part_from_model[m] * piece.scene_from_model;
-      (*scenes)[root].pieces.push_back(std::move(piece));
-    }
-    (*scenes)[root].unrefined = true;
-    (*scenes)[m].model.reset();  // freed here unless the caller holds it
+  // Every pair aligned at once (the alignments only read the models).
+  colmap::ThreadPool pool(std::max(1, o_.num_threads));
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    pool.AddTask([&, p] {
+      const auto start = Clock::now();
+      ModelPairAlignment& pair = pairs[p];
+      pair.alignment =
+          Align(*models[pair.model1], *models[pair.model2], images_first);
+      if (pair.alignment.success) {
+        SimilarityLink link;
+        link.model1 = pair.model1;
+        link.model2 = pair.model2;
+        link.model1_from_model2 = pair.alignment.target_from_source;
+        link.weight = pair.num_correspondences;
+        AddSeamPoints(*models[pair.model2], seams[p]->seam_images, &link);
+        if (!link.points2.empty()) pair.link = std::move(link);
+      }
+      pair.seconds = SecondsSince(start);
+    });
   }
-  return num_parts;
+  pool.Wait();
+  return pairs;
 }
 
-}  // namespace
-
-void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
+void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
   SortBySize(scenes);
   const auto start = Clock::now();
   // Models too small to move as one block stay out (as in MergeScenes),
-  // left to CompleteScenes; a join has no completion after it, and the
-  // images a small model shares with another group's hold it.
-  const size_t min_size = o_.complete_models && !joining ? MinModelSize() : 0;
+  // left to CompleteScenes.
+  const size_t min_size = o_.complete_models ? MinModelSize() : 0;
   std::vector<const colmap::Reconstruction*> models;
-  int num_images = 0;
+  std::vector<size_t> sizes;
   for (const AssemblyScene& scene : *scenes) {
     if (scene.model->NumRegImages() < min_size) break;
     models.push_back(scene.model.get());
-    num_images += static_cast<int>(scene.model->NumRegImages());
+    sizes.push_back(scene.model->NumRegImages());
   }
   const int n = static_cast<int>(models.size());
   if (n < 2) return;
-  std::map<std::pair<int, int>, ModelPair> pairs =
-      LinkedPairs(models, image_links_);
-  // Every pair aligned at once (the alignments only read the models).
-  std::vector<std::pair<int, int>> keys;
-  for (const auto& [key, pair] : pairs) keys.push_back(key);
-  std::vector<ModelAlignment> alignments(keys.size());
-  std::vector<double> seconds(keys.size());
-  {
-    colmap::ThreadPool pool(std::max(1, o_.num_threads));
-    for (size_t p = 0; p < keys.size(); ++p) {
-      pool.AddTask([&, p] {
-        const auto pair_start = Clock::now();
-        alignments[p] =
-            Align(*models[keys[p].first], *models[keys[p].second], joining);
-        seconds[p] = SecondsSince(pair_start);
-      });
-    }
-    pool.Wait();
-  }
+  const int num_images =
+      static_cast<int>(std::accumulate(sizes.begin(), sizes.end(), size_t{0}));
+  const std::vector<ModelPairAlignment> pairs =
+      AlignModelPairs(models, /*images_first=*/false);
   std::vector<SimilarityLink> links;
-  std::vector<size_t> link_pair;  // each link's index in keys
-  for (size_t p = 0; p < keys.size(); ++p) {
-    if (!alignments[p].success) continue;
-    SimilarityLink link;
-    link.model1 = keys[p].first;
-    link.model2 = keys[p].second;
-    link.model1_from_model2 = alignments[p].target_from_source;
-    link.weight = pairs[keys[p]].num_correspondences;
-    AddSeamPoints(*models[link.model2], pairs[keys[p]].seam_images, &link);
-    if (link.points2.empty()) continue;
-    links.push_back(std::move(link));
+  std::vector<size_t> link_pair;  // each link's index in pairs
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!pairs[p].link) continue;
+    links.push_back(*pairs[p].link);
     link_pair.push_back(p);
   }
   const SimilarityAveraging placed =
       AverageSimilarities(n, links, SimilarityAveragingOptions());
   const std::vector<TmrTaskReport> link_rows =
-      LinkRows(models, keys, alignments, seconds, link_pair, placed);
+      LinkRows(sizes, pairs, link_pair, placed);
   // Images that several models register (halos) keep one copy, then each
   // part is appended into its first (largest) model, in one frame.
   int num_copies = 0;
   const int num_parts = AppendIntoParts(placed, n, scenes, &num_copies);
   const int num_held = static_cast<int>(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));
-  record_({"align " + std::to_string(keys.size()) + " linked pairs of " +
+  record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
                std::to_string(n) + " models at once",
            num_images, num_images, SecondsSince(start), true,
            std::to_string(links.size()) + " pairs aligned, " +
@@ -248,7 +251,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes, bool joining) const {
     // A merged scene is adjusted once on its longest tracks, then fully in
     // RefineMergedScenes: its full adjustment alone, from the averaged
     // placement, left scattered photos off (docs/mapper.md, step 4).
-    if (!joining && scene.unrefined) Refine(&scene, /*while_merging=*/true);
+    if (scene.unrefined) Refine(&scene, /*while_merging=*/true);
     kept.push_back(std::move(scene));
   }
   *scenes = std::move(kept);

@@ -1,0 +1,161 @@
+// Copyright (c) 2026, the tmr authors. BSD-3-Clause.
+// The join of a merge stage by parts (docs/distributed.md) from the
+// alignments of its linked models: one similarity averaging, one copy of
+// each image, a scene per connected part, described piece by piece so that
+// the scenes can be written from the whole models one at a time.
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include "merge/scene_assembly.h"
+#include "tmr/util/process.h"
+
+namespace tmr {
+namespace {
+
+// Per model, its images whose copy in another model stays: the copy with
+// the most 3D points, the lower model number on a tie (as
+// KeepOneCopyOfEachImage decides on the models in that order).
+std::vector<std::vector<colmap::image_t>> DroppedCopies(
+    const std::vector<JoinModel>& models) {
+  std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
+  for (size_t m = 0; m < models.size(); ++m) {
+    for (const auto& [id, points] : models[m].seam_image_points) {
+      const auto [it, inserted] = best.emplace(id, std::make_pair(m, points));
+      if (!inserted && points > it->second.second) it->second = {m, points};
+    }
+  }
+  std::vector<std::vector<colmap::image_t>> dropped(models.size());
+  for (size_t m = 0; m < models.size(); ++m) {
+    for (const auto& [id, points] : models[m].seam_image_points)
+      if (best.at(id).first != m) dropped[m].push_back(id);
+    std::sort(dropped[m].begin(), dropped[m].end());
+  }
+  return dropped;
+}
+
+// Why the strongest link between two scenes of a join did not join them.
+std::string KeptApart(const ModelPairAlignment& pair,
+                      const std::vector<size_t>& link_of_pair, size_t p,
+                      const SimilarityAveraging& placed) {
+  if (!pair.alignment.success) return pair.alignment.reason;
+  if (!pair.link) return "their alignment has no points on the seam";
+  return "the similarity averaging refused their link: " +
+         placed.reason.at(link_of_pair.at(p));
+}
+
+}  // namespace
+
+std::vector<JoinedScene> SceneAssembler::PlaceJoin(
+    const std::vector<JoinModel>& models, std::vector<ModelPairAlignment> pairs,
+    std::vector<TmrWeakLink>* weak_links) const {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(models.size());
+  std::sort(pairs.begin(), pairs.end(),
+            [](const ModelPairAlignment& a, const ModelPairAlignment& b) {
+              return std::make_pair(a.model1, a.model2) <
+                     std::make_pair(b.model1, b.model2);
+            });
+  std::vector<SimilarityLink> links;
+  std::vector<size_t> link_pair;  // each link's index in pairs
+  std::vector<size_t> link_of_pair(pairs.size(), 0);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!pairs[p].link) continue;
+    link_of_pair[p] = links.size();
+    links.push_back(*pairs[p].link);
+    link_pair.push_back(p);
+  }
+  const SimilarityAveraging placed =
+      AverageSimilarities(n, links, SimilarityAveragingOptions());
+  std::vector<size_t> sizes;
+  for (const JoinModel& model : models) sizes.push_back(model.num_images);
+  const std::vector<std::vector<colmap::image_t>> dropped =
+      DroppedCopies(models);
+  // Each connected part a scene of its models in order, in its first
+  // (largest) model's frame.
+  std::vector<JoinedScene> scenes;
+  std::vector<int> scene_of_model(n, -1);
+  int num_copies = 0;
+  for (int m = 0; m < n; ++m) {
+    const int root = placed.part.at(m);
+    if (root == m) {
+      scene_of_model[m] = static_cast<int>(scenes.size());
+      scenes.emplace_back();
+    } else {
+      scene_of_model[m] = scene_of_model.at(root);
+    }
+    JoinedScene& scene = scenes[scene_of_model[m]];
+    scene.pieces.push_back(
+        {m, root == m ? colmap::Sim3d() : placed.part_from_model[m],
+         dropped[m]});
+    scene.num_images += models[m].num_images - dropped[m].size();
+    num_copies += static_cast<int>(dropped[m].size());
+  }
+  const int num_held = static_cast<int>(
+      std::count(placed.accepted.begin(), placed.accepted.end(), true));
+  const int num_images =
+      static_cast<int>(std::accumulate(sizes.begin(), sizes.end(), size_t{0}));
+  record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
+               std::to_string(n) + " models at once",
+           num_images, num_images, SecondsSince(start), true,
+           std::to_string(links.size()) + " pairs aligned, " +
+               std::to_string(num_held) +
+               " held by the similarity averaging; " +
+               "scenes: " + std::to_string(scenes.size()) +
+               (num_copies > 0 ? "; " + std::to_string(num_copies) +
+                                     " second copies of images taken out"
+                               : "")});
+  for (const TmrTaskReport& row : LinkRows(sizes, pairs, link_pair, placed))
+    record_(row);
+
+  // Largest first; with several, those below MinModelSize go.
+  std::vector<int> order(scenes.size());
+  for (size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return scenes[a].num_images > scenes[b].num_images;
+  });
+  int num_dropped = 0, dropped_images = 0;
+  while (order.size() > 1 && scenes[order.back()].num_images < MinModelSize()) {
+    ++num_dropped;
+    dropped_images += static_cast<int>(scenes[order.back()].num_images);
+    order.pop_back();
+  }
+  RecordDroppedModels(num_dropped, dropped_images);
+  std::vector<int> output_of_scene(scenes.size(), -1);
+  std::vector<JoinedScene> kept;
+  for (const int s : order) {
+    output_of_scene[s] = static_cast<int>(kept.size());
+    kept.push_back(std::move(scenes[s]));
+  }
+
+  // Scenes that verified pairs link: the strongest link between them, and
+  // why it did not join them.
+  std::map<std::pair<int, int>, TmrWeakLink> apart;
+  std::map<std::pair<int, int>, int> strongest;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const ModelPairAlignment& pair = pairs[p];
+    int a = output_of_scene[scene_of_model[pair.model1]];
+    int b = output_of_scene[scene_of_model[pair.model2]];
+    if (a < 0 || b < 0 || a == b || pair.num_pairs == 0) continue;
+    if (a > b) std::swap(a, b);
+    TmrWeakLink& link = apart[{a, b}];
+    link.model1 = a;
+    link.model2 = b;
+    link.num_pairs += pair.num_pairs;
+    link.num_correspondences += pair.num_correspondences;
+    int& most = strongest[{a, b}];
+    if (pair.num_correspondences <= most) continue;
+    most = pair.num_correspondences;
+    link.num_shared_tracks = pair.alignment.num_shared_tracks;
+    link.num_registered_images = pair.alignment.num_registered_images;
+    link.num_supporting_images = pair.alignment.num_supporting_images;
+    link.reason = KeptApart(pair, link_of_pair, p, placed);
+  }
+  weak_links->clear();
+  for (auto& [key, link] : apart) weak_links->push_back(std::move(link));
+  return kept;
+}
+
+}  // namespace tmr
