@@ -64,9 +64,9 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   // A group's clusters share their halos and one process: its peak is
   // that of its images together.
   const auto group_cost = [&](const std::vector<int>& kernels) {
-    return MergePeakMiB(LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0})),
-                        o_.refinement.points_per_image,
-                        o_.refinement.max_block_images);
+    return MergePeakMiB(
+        LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0, {}})),
+        o_.refinement.points_per_image, o_.refinement.max_block_images);
   };
   std::vector<int> cluster_of(n, -1);
   std::vector<double> cost;
@@ -80,7 +80,7 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   if (grouped.size() < 2) return;  // one group is the whole merge stage
   std::vector<int> group_of_kernel(tree_.kernels.size());
   for (int g = 0; g < static_cast<int>(grouped.size()); ++g) {
-    groups_.push_back({grouped[g], {}, 0, 0.0});
+    groups_.push_back({grouped[g], {}, 0, 0.0, {}});
     for (const int k : grouped[g]) group_of_kernel[k] = g;
   }
   // The images of no group's clusters or halos (unclustered) go to the
@@ -262,7 +262,14 @@ bool TmrMapperStages::GroupsFitTheTree() const {
     return std::all_of(values.begin(), values.end(),
                        [size](int v) { return v >= 0 && v < size; });
   };
-  for (const ClusterGroup& group : groups_) {
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const ClusterGroup& group = groups_[g];
+    // Links name later groups, each once.
+    int previous = g;
+    for (const int h : group.links) {
+      if (h <= previous) return false;
+      previous = h;
+    }
     if (!in_range(group.kernels, static_cast<int>(times_grouped.size())) ||
         !in_range(group.extra_images, num_images) ||
         !in_range(group.links, static_cast<int>(groups_.size())))

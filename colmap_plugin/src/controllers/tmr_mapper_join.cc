@@ -88,9 +88,15 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
               std::to_string(seam_ids.size()) +
               " images on the seams (in several groups, or matched across)"});
   std::vector<ModelPairAlignment> aligned;
+  // Each group's own models are linked too, in the first pair it is in.
+  std::vector<bool> inner_aligned(groups_.size(), false);
   for (const auto& [g, h] : LinkedGroupPairs()) {
-    if (!AlignGroupPair(g, h, entries, num_threads, record, &aligned, error))
+    const bool inner_g = !inner_aligned[g], inner_h = !inner_aligned[h];
+    inner_aligned[g] = inner_aligned[h] = true;
+    if (!AlignGroupPair(g, h, inner_g, inner_h, entries, num_threads, record,
+                        &aligned, error))
       return false;
+    ReleaseFreedMemory();
   }
   std::vector<JoinModel> models;
   for (const JoinEntry& entry : entries) models.push_back(entry.model);
@@ -103,6 +109,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
                                 record);
     joined = placer.PlaceJoin(models, std::move(aligned), &weak_links);
   }
+  ReleaseFreedMemory();
   // Each scene made again from the whole models, one at a time.
   const auto write_start = Clock::now();
   int num_registered = 0;
@@ -130,6 +137,10 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   record({"join: write " + std::to_string(joined.size()) +
               " models, one group's model at a time",
           n, num_registered, SecondsSince(write_start), true, ""});
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    std::error_code ec;
+    fs::remove_all(work_.GroupSeamModels(g), ec);
+  }
   FinishScenes(joined.size(), std::move(weak_links), progress, report);
   return true;
 }
@@ -146,7 +157,7 @@ std::vector<std::pair<int, int>> TmrMapperStages::LinkedGroupPairs() const {
   return pairs;
 }
 
-bool TmrMapperStages::AlignGroupPair(int g, int h,
+bool TmrMapperStages::AlignGroupPair(int g, int h, bool inner_g, bool inner_h,
                                      const std::vector<JoinEntry>& entries,
                                      int num_threads, const Record& record,
                                      std::vector<ModelPairAlignment>* aligned,
@@ -175,8 +186,10 @@ bool TmrMapperStages::AlignGroupPair(int g, int h,
                                  work_.JoinDatabase(), tree_.image_names,
                                  record);
   std::vector<ModelPairAlignment> pairs = assembler.AlignModelPairs(
-      models, /*images_first=*/true,
-      [&](int a, int b) { return group_of[a] != group_of[b]; });
+      models, /*images_first=*/true, [&](int a, int b) {
+        if (group_of[a] != group_of[b]) return true;
+        return group_of[a] == g ? inner_g : inner_h;
+      });
   for (ModelPairAlignment& pair : pairs) {
     pair.model1 = number[pair.model1];
     pair.model2 = number[pair.model2];

@@ -232,11 +232,13 @@ class TmrMapperStages {
   // (ClusterGroup::links; every pair for a plan written without them),
   // and the alignments of one such pair's models on the correspondences of
   // its seams (PairSeamImages), appended to *aligned in the join's
-  // numbering of `entries`.
+  // numbering of `entries`: the pairs across the two groups, and those
+  // within g (inner_g) or within h (inner_h), which the join aligns once.
   struct JoinEntry;
   std::vector<std::pair<int, int>> LinkedGroupPairs() const;
-  bool AlignGroupPair(int g, int h, const std::vector<JoinEntry>& entries,
-                      int num_threads, const Record& record,
+  bool AlignGroupPair(int g, int h, bool inner_g, bool inner_h,
+                      const std::vector<JoinEntry>& entries, int num_threads,
+                      const Record& record,
                       std::vector<ModelPairAlignment>* aligned,
                       std::string* error) const;
   // Reads the expected memory of every step from plan.txt (0 where an

@@ -184,7 +184,10 @@ class SceneAssembler {
   // are several. `models` are numbered largest first, as AlignAllScenes
   // numbers them. Returns the scenes largest first, and in *weak_links the
   // scenes that verified pairs link but the alignments or the averaging
-  // kept apart (from their strongest model pair). Needs no correspondences.
+  // kept apart: their models' verified pairs and matches (counted before
+  // second copies of images were dropped), and the alignment or the
+  // refusal of their strongest model pair (WeakLinks would align the
+  // scenes again, which needs them whole). Needs no correspondences.
   std::vector<JoinedScene> PlaceJoin(
       const std::vector<JoinModel>& models,
       std::vector<ModelPairAlignment> pairs,

@@ -97,18 +97,20 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));
   const int num_images =
       static_cast<int>(std::accumulate(sizes.begin(), sizes.end(), size_t{0}));
-  record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
-               std::to_string(n) + " models at once",
-           num_images, num_images, SecondsSince(start), true,
-           std::to_string(links.size()) + " pairs aligned, " +
-               std::to_string(num_held) +
-               " held by the similarity averaging; " +
-               "scenes: " + std::to_string(scenes.size()) +
-               (num_copies > 0 ? "; " + std::to_string(num_copies) +
-                                     " second copies of images taken out"
-                               : "")});
-  for (const TmrTaskReport& row : LinkRows(sizes, pairs, link_pair, placed))
-    record_(row);
+  if (n >= 2) {  // as AlignAllScenes, nothing to align below two
+    record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
+                 std::to_string(n) + " models at once",
+             num_images, num_images, SecondsSince(start), true,
+             std::to_string(links.size()) + " pairs aligned, " +
+                 std::to_string(num_held) +
+                 " held by the similarity averaging; " +
+                 "scenes: " + std::to_string(scenes.size()) +
+                 (num_copies > 0 ? "; " + std::to_string(num_copies) +
+                                       " second copies of images taken out"
+                                 : "")});
+    for (const TmrTaskReport& row : LinkRows(sizes, pairs, link_pair, placed))
+      record_(row);
+  }
 
   // Largest first; with several, those below MinModelSize go.
   std::vector<int> order(scenes.size());

@@ -57,9 +57,9 @@ TEST_F(PlaceJoinTest, LinkedModelsMakeOneSceneWithOneCopyOfEachImage) {
   const std::vector<JoinModel> models = {{50, {{100, 30}, {101, 10}}},
                                          {40, {{100, 20}, {101, 12}}}};
   const std::vector<JoinedScene> scenes = Place(models, {Aligned()});
-  ASSERT_EQ(scenes.size(), 1);
-  EXPECT_EQ(scenes[0].num_images, 88);
-  ASSERT_EQ(scenes[0].pieces.size(), 2);
+  ASSERT_EQ(scenes.size(), 1u);
+  EXPECT_EQ(scenes[0].num_images, 88u);
+  ASSERT_EQ(scenes[0].pieces.size(), 2u);
   const JoinPiece& first = scenes[0].pieces[0];
   const JoinPiece& second = scenes[0].pieces[1];
   EXPECT_EQ(first.model, 0);
@@ -73,7 +73,7 @@ TEST_F(PlaceJoinTest, LinkedModelsMakeOneSceneWithOneCopyOfEachImage) {
       1e-6);
   EXPECT_TRUE(weak_links_.empty());
   // The step's row, then the link's, held.
-  ASSERT_EQ(rows_.size(), 2);
+  ASSERT_EQ(rows_.size(), 2u);
   EXPECT_EQ(rows_[0].name, "align 1 linked pairs of 2 models at once");
   EXPECT_TRUE(rows_[1].success);
   EXPECT_EQ(rows_[1].link, (std::vector<int>{0, 1, 50, 40}));
@@ -87,11 +87,11 @@ TEST_F(PlaceJoinTest, UnalignedModelsStayApartAndSmallOnesGo) {
   // Model 2 (5 images) joins no one: below the smallest model kept.
   const std::vector<JoinModel> models = {{40, {}}, {50, {}}, {5, {}}};
   const std::vector<JoinedScene> scenes = Place(models, {refused});
-  ASSERT_EQ(scenes.size(), 2);
-  EXPECT_EQ(scenes[0].num_images, 50);  // largest first
+  ASSERT_EQ(scenes.size(), 2u);
+  EXPECT_EQ(scenes[0].num_images, 50u);  // largest first
   EXPECT_EQ(scenes[0].pieces[0].model, 1);
-  EXPECT_EQ(scenes[1].num_images, 40);
-  ASSERT_EQ(weak_links_.size(), 1);
+  EXPECT_EQ(scenes[1].num_images, 40u);
+  ASSERT_EQ(weak_links_.size(), 1u);
   EXPECT_EQ(weak_links_[0].model1, 0);
   EXPECT_EQ(weak_links_[0].model2, 1);
   EXPECT_EQ(weak_links_[0].num_pairs, 12);
