@@ -75,15 +75,18 @@ struct ModelPairAlignment {
   std::optional<SimilarityLink> link;
 };
 
-// A report row per aligned pair (`model_sizes` by model number): held by
-// the averaging (link_pair: each averaged link's index in `pairs`), or why
-// not, with the pair's models in `link`. The alignments ran in parallel
-// inside their "align ... at once" step, so the rows take no time of
-// their own in the assembly's chain of steps.
-std::vector<TmrTaskReport> LinkRows(
+// The report rows of an alignment of models at once (`model_sizes` by
+// model number): the step's (its pairs, links held, the scenes it made and
+// the second copies of images it took out), then one per aligned pair,
+// held by the averaging (link_pair: each averaged link's index in
+// `pairs`) or why not, with the pair's models in `link`. The alignments
+// ran in parallel inside the step, so their rows take no time of their own
+// in the assembly's chain of steps.
+std::vector<TmrTaskReport> AlignmentRows(
     const std::vector<size_t>& model_sizes,
     const std::vector<ModelPairAlignment>& pairs,
-    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed);
+    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed,
+    size_t num_scenes, int num_copies, double seconds);
 
 // What a join (SceneAssembler::PlaceJoin) knows of one of its models
 // without holding it: its registered images, and the number of 3D points

@@ -128,11 +128,25 @@ int AppendIntoParts(const SimilarityAveraging& placed, int n,
 
 }  // namespace
 
-std::vector<TmrTaskReport> LinkRows(
+std::vector<TmrTaskReport> AlignmentRows(
     const std::vector<size_t>& model_sizes,
     const std::vector<ModelPairAlignment>& pairs,
-    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed) {
-  std::vector<TmrTaskReport> rows;
+    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed,
+    size_t num_scenes, int num_copies, double seconds) {
+  const int num_held = static_cast<int>(
+      std::count(placed.accepted.begin(), placed.accepted.end(), true));
+  const int num_images = static_cast<int>(
+      std::accumulate(model_sizes.begin(), model_sizes.end(), size_t{0}));
+  std::vector<TmrTaskReport> rows = {
+      {"align " + std::to_string(pairs.size()) + " linked pairs of " +
+           std::to_string(model_sizes.size()) + " models at once",
+       num_images, num_images, seconds, true,
+       std::to_string(link_pair.size()) + " pairs aligned, " +
+           std::to_string(num_held) + " held by the similarity averaging; " +
+           "scenes: " + std::to_string(num_scenes) +
+           (num_copies > 0 ? "; " + std::to_string(num_copies) +
+                                 " second copies of images taken out"
+                           : "")}};
   for (const ModelPairAlignment& pair : pairs) {
     const int a = static_cast<int>(model_sizes.at(pair.model1));
     const int b = static_cast<int>(model_sizes.at(pair.model2));
@@ -147,7 +161,7 @@ std::vector<TmrTaskReport> LinkRows(
     rows.back().link = {pair.model1, pair.model2, a, b};
   }
   for (size_t l = 0; l < link_pair.size(); ++l) {
-    TmrTaskReport& row = rows[link_pair[l]];
+    TmrTaskReport& row = rows[1 + link_pair[l]];
     row.success = placed.accepted[l];
     row.num_registered = row.success ? row.num_images : 0;
     row.message =
@@ -212,8 +226,6 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
   }
   const int n = static_cast<int>(models.size());
   if (n < 2) return;
-  const int num_images =
-      static_cast<int>(std::accumulate(sizes.begin(), sizes.end(), size_t{0}));
   const std::vector<ModelPairAlignment> pairs =
       AlignModelPairs(models, /*images_first=*/false);
   std::vector<SimilarityLink> links;
@@ -225,25 +237,14 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
   }
   const SimilarityAveraging placed =
       AverageSimilarities(n, links, SimilarityAveragingOptions());
-  const std::vector<TmrTaskReport> link_rows =
-      LinkRows(sizes, pairs, link_pair, placed);
   // Images that several models register (halos) keep one copy, then each
   // part is appended into its first (largest) model, in one frame.
   int num_copies = 0;
   const int num_parts = AppendIntoParts(placed, n, scenes, &num_copies);
-  const int num_held = static_cast<int>(
-      std::count(placed.accepted.begin(), placed.accepted.end(), true));
-  record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
-               std::to_string(n) + " models at once",
-           num_images, num_images, SecondsSince(start), true,
-           std::to_string(links.size()) + " pairs aligned, " +
-               std::to_string(num_held) +
-               " held by the similarity averaging; " +
-               "scenes: " + std::to_string(num_parts) +
-               (num_copies > 0 ? "; " + std::to_string(num_copies) +
-                                     " second copies of images taken out"
-                               : "")});
-  for (const TmrTaskReport& row : link_rows) record_(row);
+  for (const TmrTaskReport& row :
+       AlignmentRows(sizes, pairs, link_pair, placed, num_parts, num_copies,
+                     SecondsSince(start)))
+    record_(row);
   Scenes kept;
   for (int m = 0; m < static_cast<int>(scenes->size()); ++m) {
     if (m < n && placed.part[m] != m) continue;  // appended above

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
-#include <numeric>
 #include <unordered_map>
 
 #include "merge/scene_assembly.h"
@@ -93,22 +92,10 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
     scene.num_images += models[m].num_images - dropped[m].size();
     num_copies += static_cast<int>(dropped[m].size());
   }
-  const int num_held = static_cast<int>(
-      std::count(placed.accepted.begin(), placed.accepted.end(), true));
-  const int num_images =
-      static_cast<int>(std::accumulate(sizes.begin(), sizes.end(), size_t{0}));
   if (n >= 2) {  // as AlignAllScenes, nothing to align below two
-    record_({"align " + std::to_string(pairs.size()) + " linked pairs of " +
-                 std::to_string(n) + " models at once",
-             num_images, num_images, SecondsSince(start), true,
-             std::to_string(links.size()) + " pairs aligned, " +
-                 std::to_string(num_held) +
-                 " held by the similarity averaging; " +
-                 "scenes: " + std::to_string(scenes.size()) +
-                 (num_copies > 0 ? "; " + std::to_string(num_copies) +
-                                       " second copies of images taken out"
-                                 : "")});
-    for (const TmrTaskReport& row : LinkRows(sizes, pairs, link_pair, placed))
+    for (const TmrTaskReport& row :
+         AlignmentRows(sizes, pairs, link_pair, placed, scenes.size(),
+                       num_copies, SecondsSince(start)))
       record_(row);
   }
 
