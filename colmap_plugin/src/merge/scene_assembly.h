@@ -91,7 +91,7 @@ std::vector<TmrTaskReport> AlignmentRows(
 // What a join (SceneAssembler::PlaceJoin) knows of one of its models
 // without holding it: its registered images, and the number of 3D points
 // of each of those images that another model may hold too (the seams),
-// which decides the copy kept (KeepOneCopyOfEachImage's rule).
+// which decides the copy kept (DroppedImageCopies).
 struct JoinModel {
   size_t num_images = 0;
   std::unordered_map<colmap::image_t, size_t> seam_image_points;

@@ -9,31 +9,11 @@
 #include <unordered_map>
 
 #include "merge/scene_assembly.h"
+#include "sfm/model_edits.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
 namespace {
-
-// Per model, its images whose copy in another model stays: the copy with
-// the most 3D points, the lower model number on a tie (as
-// KeepOneCopyOfEachImage decides on the models in that order).
-std::vector<std::vector<colmap::image_t>> DroppedCopies(
-    const std::vector<JoinModel>& models) {
-  std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
-  for (size_t m = 0; m < models.size(); ++m) {
-    for (const auto& [id, points] : models[m].seam_image_points) {
-      const auto [it, inserted] = best.emplace(id, std::make_pair(m, points));
-      if (!inserted && points > it->second.second) it->second = {m, points};
-    }
-  }
-  std::vector<std::vector<colmap::image_t>> dropped(models.size());
-  for (size_t m = 0; m < models.size(); ++m) {
-    for (const auto& [id, points] : models[m].seam_image_points)
-      if (best.at(id).first != m) dropped[m].push_back(id);
-    std::sort(dropped[m].begin(), dropped[m].end());
-  }
-  return dropped;
-}
 
 // Why the strongest link between two scenes of a join did not join them.
 std::string KeptApart(const ModelPairAlignment& pair,
@@ -70,8 +50,11 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
       AverageSimilarities(n, links, SimilarityAveragingOptions());
   std::vector<size_t> sizes;
   for (const JoinModel& model : models) sizes.push_back(model.num_images);
+  std::vector<std::unordered_map<colmap::image_t, size_t>> seam_points;
+  for (const JoinModel& model : models)
+    seam_points.push_back(model.seam_image_points);
   const std::vector<std::vector<colmap::image_t>> dropped =
-      DroppedCopies(models);
+      DroppedImageCopies(seam_points);
   // Each connected part a scene of its models in order, in its first
   // (largest) model's frame.
   std::vector<JoinedScene> scenes;

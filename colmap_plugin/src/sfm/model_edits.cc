@@ -1,6 +1,7 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 #include "sfm/model_edits.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -68,27 +69,44 @@ void CopyPointsWithTracks(const colmap::Reconstruction& source,
   }
 }
 
-int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models,
-                           std::vector<std::vector<colmap::image_t>>* dropped) {
-  if (dropped) dropped->assign(models.size(), {});
+std::vector<std::vector<colmap::image_t>> DroppedImageCopies(
+    const std::vector<std::unordered_map<colmap::image_t, size_t>>&
+        points_of_images) {
   // Per image, the model whose copy stays and its number of 3D points.
   std::unordered_map<colmap::image_t, std::pair<size_t, size_t>> best;
-  std::vector<std::pair<size_t, colmap::image_t>> copies;
-  for (size_t m = 0; m < models.size(); ++m) {
-    for (const colmap::image_t id : models[m]->RegImageIds()) {
-      copies.emplace_back(m, id);
-      const size_t points = models[m]->Image(id).NumPoints3D();
+  for (size_t m = 0; m < points_of_images.size(); ++m) {
+    for (const auto& [id, points] : points_of_images[m]) {
       const auto [it, inserted] = best.emplace(id, std::make_pair(m, points));
       if (!inserted && points > it->second.second) it->second = {m, points};
     }
   }
-  int removed = 0;
-  for (const auto& [m, id] : copies) {
-    if (best.at(id).first == m) continue;
-    models[m]->DeRegisterFrame(models[m]->Image(id).FrameId());
-    if (dropped) (*dropped)[m].push_back(id);
-    ++removed;
+  std::vector<std::vector<colmap::image_t>> dropped(points_of_images.size());
+  for (size_t m = 0; m < points_of_images.size(); ++m) {
+    for (const auto& [id, points] : points_of_images[m])
+      if (best.at(id).first != m) dropped[m].push_back(id);
+    std::sort(dropped[m].begin(), dropped[m].end());
   }
+  return dropped;
+}
+
+int KeepOneCopyOfEachImage(const std::vector<colmap::Reconstruction*>& models,
+                           std::vector<std::vector<colmap::image_t>>* dropped) {
+  std::vector<std::unordered_map<colmap::image_t, size_t>> points_of_images(
+      models.size());
+  for (size_t m = 0; m < models.size(); ++m) {
+    for (const colmap::image_t id : models[m]->RegImageIds())
+      points_of_images[m][id] = models[m]->Image(id).NumPoints3D();
+  }
+  std::vector<std::vector<colmap::image_t>> drop =
+      DroppedImageCopies(points_of_images);
+  int removed = 0;
+  for (size_t m = 0; m < models.size(); ++m) {
+    for (const colmap::image_t id : drop[m]) {
+      models[m]->DeRegisterFrame(models[m]->Image(id).FrameId());
+      ++removed;
+    }
+  }
+  if (dropped) *dropped = std::move(drop);
   return removed;
 }
 

@@ -6,6 +6,7 @@
 #include <colmap/geometry/sim3.h>
 #include <colmap/scene/reconstruction.h>
 
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -33,6 +34,15 @@ void SetPoseAndRegister(colmap::image_t image_id,
 void CopyPointsWithTracks(const colmap::Reconstruction& source,
                           const std::vector<colmap::point3D_t>& point_ids,
                           colmap::Reconstruction* target);
+
+// KeepOneCopyOfEachImage's rule on each model's registered images and their
+// numbers of 3D points (models in order, the whole models or only the
+// images another model may hold): per model, the images whose copy in
+// another model stays (the copy with the most 3D points, the first
+// model's on a tie), sorted.
+std::vector<std::vector<colmap::image_t>> DroppedImageCopies(
+    const std::vector<std::unordered_map<colmap::image_t, size_t>>&
+        points_of_images);
 
 // Leaves every image registered in one of `models` only: where several
 // register it (the halo of neighbouring clusters), the copy that observes
