@@ -75,17 +75,24 @@ struct ModelPairAlignment {
   std::optional<SimilarityLink> link;
 };
 
+// The models placed by one similarity averaging of the links of their
+// aligned pairs, and each averaged link's index in those pairs.
+struct PlacedModels {
+  SimilarityAveraging placed;
+  std::vector<size_t> link_pair;
+};
+PlacedModels PlaceModelPairs(int num_models,
+                             const std::vector<ModelPairAlignment>& pairs);
+
 // The report rows of an alignment of models at once (`model_sizes` by
 // model number): the step's (its pairs, links held, the scenes it made and
 // the second copies of images it took out), then one per aligned pair,
-// held by the averaging (link_pair: each averaged link's index in
-// `pairs`) or why not, with the pair's models in `link`. The alignments
-// ran in parallel inside the step, so their rows take no time of their own
-// in the assembly's chain of steps.
+// held by the averaging or why not, with the pair's models in `link`. The
+// alignments ran in parallel inside the step, so their rows take no time
+// of their own in the assembly's chain of steps.
 std::vector<TmrTaskReport> AlignmentRows(
     const std::vector<size_t>& model_sizes,
-    const std::vector<ModelPairAlignment>& pairs,
-    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed,
+    const std::vector<ModelPairAlignment>& pairs, const PlacedModels& placed,
     size_t num_scenes, int num_copies, double seconds);
 
 // What a join (SceneAssembler::PlaceJoin) knows of one of its models

@@ -128,11 +128,26 @@ int AppendIntoParts(const SimilarityAveraging& placed, int n,
 
 }  // namespace
 
+PlacedModels PlaceModelPairs(int num_models,
+                             const std::vector<ModelPairAlignment>& pairs) {
+  std::vector<SimilarityLink> links;
+  PlacedModels placed;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if (!pairs[p].link) continue;
+    links.push_back(*pairs[p].link);
+    placed.link_pair.push_back(p);
+  }
+  placed.placed =
+      AverageSimilarities(num_models, links, SimilarityAveragingOptions());
+  return placed;
+}
+
 std::vector<TmrTaskReport> AlignmentRows(
     const std::vector<size_t>& model_sizes,
-    const std::vector<ModelPairAlignment>& pairs,
-    const std::vector<size_t>& link_pair, const SimilarityAveraging& placed,
+    const std::vector<ModelPairAlignment>& pairs, const PlacedModels& models,
     size_t num_scenes, int num_copies, double seconds) {
+  const SimilarityAveraging& placed = models.placed;
+  const std::vector<size_t>& link_pair = models.link_pair;
   const int num_held = static_cast<int>(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));
   const int num_images = static_cast<int>(
@@ -228,21 +243,14 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
   if (n < 2) return;
   const std::vector<ModelPairAlignment> pairs =
       AlignModelPairs(models, /*images_first=*/false);
-  std::vector<SimilarityLink> links;
-  std::vector<size_t> link_pair;  // each link's index in pairs
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    if (!pairs[p].link) continue;
-    links.push_back(*pairs[p].link);
-    link_pair.push_back(p);
-  }
-  const SimilarityAveraging placed =
-      AverageSimilarities(n, links, SimilarityAveragingOptions());
+  const PlacedModels placed_models = PlaceModelPairs(n, pairs);
+  const SimilarityAveraging& placed = placed_models.placed;
   // Images that several models register (halos) keep one copy, then each
   // part is appended into its first (largest) model, in one frame.
   int num_copies = 0;
   const int num_parts = AppendIntoParts(placed, n, scenes, &num_copies);
   for (const TmrTaskReport& row :
-       AlignmentRows(sizes, pairs, link_pair, placed, num_parts, num_copies,
+       AlignmentRows(sizes, pairs, placed_models, num_parts, num_copies,
                      SecondsSince(start)))
     record_(row);
   Scenes kept;

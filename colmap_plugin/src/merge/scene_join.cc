@@ -16,13 +16,14 @@ namespace tmr {
 namespace {
 
 // Why the strongest link between two scenes of a join did not join them.
-std::string KeptApart(const ModelPairAlignment& pair,
-                      const std::vector<size_t>& link_of_pair, size_t p,
-                      const SimilarityAveraging& placed) {
+std::string KeptApart(const ModelPairAlignment& pair, size_t p,
+                      const PlacedModels& placed) {
   if (!pair.alignment.success) return pair.alignment.reason;
   if (!pair.link) return "their alignment has no points on the seam";
+  const auto link = std::find(placed.link_pair.begin(),
+                              placed.link_pair.end(), p);
   return "the similarity averaging refused their link: " +
-         placed.reason.at(link_of_pair.at(p));
+         placed.placed.reason.at(link - placed.link_pair.begin());
 }
 
 }  // namespace
@@ -37,17 +38,8 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
               return std::make_pair(a.model1, a.model2) <
                      std::make_pair(b.model1, b.model2);
             });
-  std::vector<SimilarityLink> links;
-  std::vector<size_t> link_pair;  // each link's index in pairs
-  std::vector<size_t> link_of_pair(pairs.size(), 0);
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    if (!pairs[p].link) continue;
-    link_of_pair[p] = links.size();
-    links.push_back(*pairs[p].link);
-    link_pair.push_back(p);
-  }
-  const SimilarityAveraging placed =
-      AverageSimilarities(n, links, SimilarityAveragingOptions());
+  const PlacedModels placed_models = PlaceModelPairs(n, pairs);
+  const SimilarityAveraging& placed = placed_models.placed;
   std::vector<size_t> sizes;
   for (const JoinModel& model : models) sizes.push_back(model.num_images);
   std::vector<std::unordered_map<colmap::image_t, size_t>> seam_points;
@@ -77,7 +69,7 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
   }
   if (n >= 2) {  // as AlignAllScenes, nothing to align below two
     for (const TmrTaskReport& row :
-         AlignmentRows(sizes, pairs, link_pair, placed, scenes.size(),
+         AlignmentRows(sizes, pairs, placed_models, scenes.size(),
                        num_copies, SecondsSince(start)))
       record_(row);
   }
@@ -123,7 +115,7 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
     link.num_shared_tracks = pair.alignment.num_shared_tracks;
     link.num_registered_images = pair.alignment.num_registered_images;
     link.num_supporting_images = pair.alignment.num_supporting_images;
-    link.reason = KeptApart(pair, link_of_pair, p, placed);
+    link.reason = KeptApart(pair, p, placed_models);
   }
   weak_links->clear();
   for (auto& [key, link] : apart) weak_links->push_back(std::move(link));
