@@ -2,6 +2,8 @@
 #include "report/report_page.h"
 
 #include <colmap/scene/reconstruction.h>
+#include <colmap/scene/reconstruction_io_binary.h>
+#include <colmap/util/endian.h>
 
 #include <algorithm>
 #include <array>
@@ -10,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -71,10 +74,12 @@ void AppendAll(const Json& values, Json* out) {
   for (const Json& v : values) out->push_back(v);
 }
 
-// What the page draws of one model, read once: its figures, its cameras
+// What the page draws of one model, streamed from its binary files so that
+// the page never holds a whole model (at 9,768 photos a whole model took
+// 2.4 GB, more than the join that wrote it): its figures, its cameras
 // (centre, then the viewing direction and the image's right and down
-// half-extents at unit depth) by image id, and its points with colours by
-// point id.
+// half-extents at unit depth) by image id, and every `stride`-th of its
+// points with colours, in the file's order.
 struct ModelContents {
   Json figures;
   std::vector<Eigen::Vector3d> centres;
@@ -83,49 +88,111 @@ struct ModelContents {
   std::vector<Eigen::Matrix<uint8_t, 3, 1>> colours;
 };
 
-ModelContents ReadModelContents(const std::string& path,
-                                const std::string& name) {
-  colmap::Reconstruction model;
-  model.Read(path);
+template <typename T>
+T Read(std::istream* stream) {
+  return colmap::ReadBinaryLittleEndian<T>(stream);
+}
+
+std::ifstream OpenModelFile(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    throw std::runtime_error("cannot read '" + path.string() +
+                             "' (the report reads binary COLMAP models)");
+  }
+  return file;
+}
+
+// The number of 3D points of a binary model (points3D.bin's first field).
+size_t NumPointsOfModel(const fs::path& model) {
+  std::ifstream file = OpenModelFile(model / "points3D.bin");
+  return Read<uint64_t>(&file);
+}
+
+ModelContents ReadModelContents(const fs::path& path, const std::string& name,
+                                size_t stride) {
+  colmap::Reconstruction cameras;  // only the cameras: small
+  colmap::ReadCamerasBinary(cameras, path / "cameras.bin");
   ModelContents contents;
-  contents.figures = {
-      {"name", name},
-      {"registered", model.NumRegImages()},
-      {"points", model.NumPoints3D()},
-      {"observations", model.ComputeNumObservations()},
-      {"mean_reprojection_error_px", model.ComputeMeanReprojectionError()}};
-  std::vector<colmap::image_t> image_ids = model.RegImageIds();
-  std::sort(image_ids.begin(), image_ids.end());
-  for (const colmap::image_t id : image_ids) {
-    const colmap::Image& image = model.Image(id);
-    const colmap::Camera& camera = *image.CameraPtr();
-    const Eigen::Matrix3d r =
-        image.CamFromWorld().rotation().toRotationMatrix();
+  // images.bin: the registered images, each with its pose and keypoints.
+  std::ifstream images = OpenModelFile(path / "images.bin");
+  const uint64_t num_images = Read<uint64_t>(&images);
+  std::vector<std::pair<colmap::image_t, size_t>> order;
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<std::array<Eigen::Vector3d, 3>> axes;
+  for (uint64_t i = 0; i < num_images && images; ++i) {
+    const colmap::image_t id = Read<colmap::image_t>(&images);
+    Eigen::Quaterniond rotation;
+    rotation.w() = Read<double>(&images);
+    rotation.x() = Read<double>(&images);
+    rotation.y() = Read<double>(&images);
+    rotation.z() = Read<double>(&images);
+    Eigen::Vector3d translation;
+    for (int k = 0; k < 3; ++k) translation(k) = Read<double>(&images);
+    const colmap::Camera& camera =
+        cameras.Camera(Read<colmap::camera_t>(&images));
+    images.ignore(std::numeric_limits<std::streamsize>::max(), '\0');
+    const uint64_t num_points2D = Read<uint64_t>(&images);
+    images.seekg(
+        num_points2D * (2 * sizeof(double) + sizeof(colmap::point3D_t)),
+        std::ios::cur);
+    const Eigen::Matrix3d r = rotation.normalized().toRotationMatrix();
     const double f = std::max(camera.MeanFocalLength(), 1e-9);
-    contents.centres.push_back(image.ProjectionCenter());
-    contents.camera_axes.push_back(
-        {r.row(2).transpose(), r.row(0).transpose() * camera.width / (2 * f),
-         r.row(1).transpose() * camera.height / (2 * f)});
+    order.emplace_back(id, centres.size());
+    centres.push_back(-r.transpose() * translation);
+    axes.push_back({r.row(2).transpose(),
+                    r.row(0).transpose() * camera.width / (2 * f),
+                    r.row(1).transpose() * camera.height / (2 * f)});
   }
-  std::vector<colmap::point3D_t> point_ids;
-  for (const auto& [id, point] : model.Points3D()) point_ids.push_back(id);
-  std::sort(point_ids.begin(), point_ids.end());
-  for (const colmap::point3D_t id : point_ids) {
-    contents.points.push_back(model.Point3D(id).xyz);
-    contents.colours.push_back(model.Point3D(id).color);
+  if (!images)
+    throw std::runtime_error("'" + path.string() + "/images.bin' is cut short");
+  std::sort(order.begin(), order.end());
+  for (const auto& [id, i] : order) {
+    contents.centres.push_back(centres[i]);
+    contents.camera_axes.push_back(axes[i]);
   }
+  // points3D.bin: every point's position, colour, error and track.
+  std::ifstream points = OpenModelFile(path / "points3D.bin");
+  const uint64_t num_points = Read<uint64_t>(&points);
+  uint64_t num_observations = 0, num_errors = 0;
+  double error_sum = 0.0;
+  for (uint64_t p = 0; p < num_points && points; ++p) {
+    Read<colmap::point3D_t>(&points);
+    Eigen::Vector3d xyz;
+    for (int k = 0; k < 3; ++k) xyz(k) = Read<double>(&points);
+    Eigen::Matrix<uint8_t, 3, 1> colour;
+    for (int k = 0; k < 3; ++k) colour(k) = Read<uint8_t>(&points);
+    const double error = Read<double>(&points);
+    if (error != -1.0) {  // as colmap::Point3D::HasError
+      error_sum += error;
+      ++num_errors;
+    }
+    const uint64_t track_length = Read<uint64_t>(&points);
+    num_observations += track_length;
+    points.seekg(
+        track_length * (sizeof(colmap::image_t) + sizeof(colmap::point2D_t)),
+        std::ios::cur);
+    if (p % std::max<size_t>(stride, 1) != 0) continue;
+    contents.points.push_back(xyz);
+    contents.colours.push_back(colour);
+  }
+  if (!points)
+    throw std::runtime_error("'" + path.string() +
+                             "/points3D.bin' is cut short");
+  // As colmap::Reconstruction's figures.
+  contents.figures = {{"name", name},
+                      {"registered", num_images},
+                      {"points", num_points},
+                      {"observations", num_observations},
+                      {"mean_reprojection_error_px",
+                       num_errors == 0 ? 0.0 : error_sum / num_errors}};
   return contents;
 }
 
 // One model's data: its figures, its cameras (on the grid, then the axes
-// in thousandths) and every `stride`-th of its points with colours.
-Json ModelData(const ModelContents& contents, size_t stride) {
-  std::vector<size_t> drawn_points;
-  for (size_t i = 0; i < contents.points.size();
-       i += std::max<size_t>(stride, 1))
-    drawn_points.push_back(i);
+// in thousandths) and its drawn points with colours.
+Json ModelData(const ModelContents& contents) {
   std::vector<Eigen::Vector3d> drawn = contents.centres;
-  for (const size_t i : drawn_points) drawn.push_back(contents.points[i]);
+  drawn.insert(drawn.end(), contents.points.begin(), contents.points.end());
   const Grid grid = GridOf(drawn);
   Json cameras = Json::array(), xyz = Json::array(), rgb = Json::array();
   for (size_t c = 0; c < contents.centres.size(); ++c) {
@@ -134,7 +201,7 @@ Json ModelData(const ModelContents& contents, size_t stride) {
       for (int k = 0; k < 3; ++k)
         cameras.push_back(std::lround(1000 * axis(k)));
   }
-  for (const size_t i : drawn_points) {
+  for (size_t i = 0; i < contents.points.size(); ++i) {
     AppendAll(grid.Quantized(contents.points[i]), &xyz);
     for (int k = 0; k < 3; ++k) rgb.push_back(int(contents.colours[i](k)));
   }
@@ -142,33 +209,35 @@ Json ModelData(const ModelContents& contents, size_t stride) {
   data["origin"] = {grid.origin.x(), grid.origin.y(), grid.origin.z()};
   data["step"] = grid.step;
   data["cameras"] = std::move(cameras);
-  data["points_drawn"] = drawn_points.size();
+  data["points_drawn"] = contents.points.size();
   data["xyz"] = std::move(xyz);
   data["rgb"] = std::move(rgb);
   return data;
 }
 
-// The run's models output_path/0, 1, ..., in order, each read once (one
-// model in memory at a time; what the page draws of each kept).
+// The run's models output_path/0, 1, ..., in order, each streamed once,
+// their drawn points shared out by size.
 Json ModelsData(const std::string& output_path,
                 const ReportPageOptions& options) {
-  std::vector<ModelContents> contents;
+  std::vector<fs::path> paths;
+  std::vector<size_t> num_points;
   size_t total = 0;
   for (int i = 0;; ++i) {
     const fs::path path = fs::path(output_path) / std::to_string(i);
     if (!fs::is_directory(path)) break;
-    contents.push_back(ReadModelContents(path.string(), std::to_string(i)));
-    total += contents.back().points.size();
+    paths.push_back(path);
+    num_points.push_back(NumPointsOfModel(path));
+    total += num_points.back();
   }
   Json models = Json::array();
-  for (const ModelContents& model : contents) {
-    const size_t num_points = model.points.size();
+  for (size_t m = 0; m < paths.size(); ++m) {
     const double quota = total == 0 ? 0.0
                                     : double(options.max_drawn_points) *
-                                          double(num_points) / double(total);
-    const size_t stride =
-        quota <= 0 ? num_points + 1 : size_t(std::ceil(num_points / quota));
-    models.push_back(ModelData(model, stride));
+                                          double(num_points[m]) / double(total);
+    const size_t stride = quota <= 0 ? num_points[m] + 1
+                                     : size_t(std::ceil(num_points[m] / quota));
+    models.push_back(
+        ModelData(ReadModelContents(paths[m], std::to_string(m), stride)));
   }
   return models;
 }

@@ -93,6 +93,12 @@ TEST_F(ReportPageTest, CamerasAreWhereTheModelHasThem) {
   const Json& model = data["models"][0];
   colmap::Reconstruction reconstruction;
   reconstruction.Read((fs::path(Output()) / "0").string());
+  // The figures streamed from the files are COLMAP's own.
+  EXPECT_EQ(model["registered"], reconstruction.NumRegImages());
+  EXPECT_EQ(model["points"], reconstruction.NumPoints3D());
+  EXPECT_EQ(model["observations"], reconstruction.ComputeNumObservations());
+  EXPECT_NEAR(model["mean_reprojection_error_px"].get<double>(),
+              reconstruction.ComputeMeanReprojectionError(), 1e-9);
   std::vector<colmap::image_t> ids = reconstruction.RegImageIds();
   std::sort(ids.begin(), ids.end());
   const double step = model["step"];
