@@ -78,8 +78,8 @@ struct ModelPairAlignment {
 // The models placed by one similarity averaging of the links of their
 // aligned pairs, and each averaged link's index in those pairs.
 struct PlacedModels {
-  SimilarityAveraging placed;
-  std::vector<size_t> link_pair;
+  SimilarityAveraging averaging;
+  std::vector<size_t> link_pair;  // each averaged link's index in pairs
 };
 PlacedModels PlaceModelPairs(int num_models,
                              const std::vector<ModelPairAlignment>& pairs);

@@ -137,7 +137,7 @@ PlacedModels PlaceModelPairs(int num_models,
     links.push_back(*pairs[p].link);
     placed.link_pair.push_back(p);
   }
-  placed.placed =
+  placed.averaging =
       AverageSimilarities(num_models, links, SimilarityAveragingOptions());
   return placed;
 }
@@ -146,7 +146,7 @@ std::vector<TmrTaskReport> AlignmentRows(
     const std::vector<size_t>& model_sizes,
     const std::vector<ModelPairAlignment>& pairs, const PlacedModels& models,
     size_t num_scenes, int num_copies, double seconds) {
-  const SimilarityAveraging& placed = models.placed;
+  const SimilarityAveraging& placed = models.averaging;
   const std::vector<size_t>& link_pair = models.link_pair;
   const int num_held = static_cast<int>(
       std::count(placed.accepted.begin(), placed.accepted.end(), true));
@@ -244,7 +244,7 @@ void SceneAssembler::AlignAllScenes(Scenes* scenes) const {
   const std::vector<ModelPairAlignment> pairs =
       AlignModelPairs(models, /*images_first=*/false);
   const PlacedModels placed_models = PlaceModelPairs(n, pairs);
-  const SimilarityAveraging& placed = placed_models.placed;
+  const SimilarityAveraging& placed = placed_models.averaging;
   // Images that several models register (halos) keep one copy, then each
   // part is appended into its first (largest) model, in one frame.
   int num_copies = 0;

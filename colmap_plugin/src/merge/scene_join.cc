@@ -20,10 +20,10 @@ std::string KeptApart(const ModelPairAlignment& pair, size_t p,
                       const PlacedModels& placed) {
   if (!pair.alignment.success) return pair.alignment.reason;
   if (!pair.link) return "their alignment has no points on the seam";
-  const auto link = std::find(placed.link_pair.begin(),
-                              placed.link_pair.end(), p);
+  const auto link =
+      std::find(placed.link_pair.begin(), placed.link_pair.end(), p);
   return "the similarity averaging refused their link: " +
-         placed.placed.reason.at(link - placed.link_pair.begin());
+         placed.averaging.reason.at(link - placed.link_pair.begin());
 }
 
 }  // namespace
@@ -39,7 +39,7 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
                      std::make_pair(b.model1, b.model2);
             });
   const PlacedModels placed_models = PlaceModelPairs(n, pairs);
-  const SimilarityAveraging& placed = placed_models.placed;
+  const SimilarityAveraging& placed = placed_models.averaging;
   std::vector<size_t> sizes;
   for (const JoinModel& model : models) sizes.push_back(model.num_images);
   std::vector<std::unordered_map<colmap::image_t, size_t>> seam_points;
@@ -69,8 +69,8 @@ std::vector<JoinedScene> SceneAssembler::PlaceJoin(
   }
   if (n >= 2) {  // as AlignAllScenes, nothing to align below two
     for (const TmrTaskReport& row :
-         AlignmentRows(sizes, pairs, placed_models, scenes.size(),
-                       num_copies, SecondsSince(start)))
+         AlignmentRows(sizes, pairs, placed_models, scenes.size(), num_copies,
+                       SecondsSince(start)))
       record_(row);
   }
 
