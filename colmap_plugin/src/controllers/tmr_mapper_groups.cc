@@ -121,11 +121,13 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   }
   seam_images_ = SeamImages(graph);
   LinkGroups(graph);
-  // The join aligns one linked pair of groups at a time.
+  // The join aligns one linked pair of groups at a time (at most on both
+  // groups' whole seams).
   MemoryLoad largest_pair;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     for (const int h : groups_[g].links) {
-      const MemoryLoad pair = LoadOfImages(graph, PairSeamImages(g, h));
+      const MemoryLoad pair =
+          LoadOfImages(graph, PairSeamImages(g, h, true, true));
       if (pair.matched_keypoints > largest_pair.matched_keypoints)
         largest_pair = pair;
     }
@@ -170,24 +172,45 @@ void TmrMapperStages::LinkGroups(const MatchGraph& graph) {
   std::vector<std::vector<int>> groups_of(graph.NumImages());
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g)
     for (const int i : GroupImages(groups_[g])) groups_of.at(i).push_back(g);
-  std::vector<std::set<int>> links(groups_.size());
-  const auto link = [&](int g, int h) {
-    if (g != h) links[std::min(g, h)].insert(std::max(g, h));
+  // Each link's seam images, by the link's first group.
+  std::vector<std::map<int, std::set<int>>> links(groups_.size());
+  const auto link = [&](int g, int h, int i, int j) {
+    if (g == h) return;
+    std::set<int>& seam = links[std::min(g, h)][std::max(g, h)];
+    seam.insert(i);
+    seam.insert(j);
   };
-  for (const std::vector<int>& holders : groups_of)
-    for (const int g : holders)
-      for (const int h : holders) link(g, h);
+  for (int i = 0; i < graph.NumImages(); ++i)
+    for (const int g : groups_of[i])
+      for (const int h : groups_of[i]) link(g, h, i, i);
   for (const MatchGraphPair& pair : graph.pairs)
     for (const int g : groups_of[pair.image1])
-      for (const int h : groups_of[pair.image2]) link(g, h);
-  for (size_t g = 0; g < groups_.size(); ++g)
-    groups_[g].links.assign(links[g].begin(), links[g].end());
+      for (const int h : groups_of[pair.image2])
+        link(g, h, pair.image1, pair.image2);
+  for (size_t g = 0; g < groups_.size(); ++g) {
+    groups_[g].links.clear();
+    groups_[g].link_seams.clear();
+    for (const auto& [h, seam] : links[g]) {
+      groups_[g].links.push_back(h);
+      groups_[g].link_seams.emplace_back(seam.begin(), seam.end());
+    }
+  }
 }
 
-std::vector<int> TmrMapperStages::PairSeamImages(int g, int h) const {
-  std::vector<int> images = GroupImages(groups_.at(g));
-  const std::vector<int> other = GroupImages(groups_.at(h));
-  images.insert(images.end(), other.begin(), other.end());
+std::vector<int> TmrMapperStages::PairSeamImages(int g, int h, bool whole_g,
+                                                 bool whole_h) const {
+  const ClusterGroup& first = groups_.at(g);
+  const auto l = std::find(first.links.begin(), first.links.end(), h);
+  const bool has_seam = l != first.links.end() &&
+                        first.link_seams.size() == first.links.size() &&
+                        !first.link_seams[l - first.links.begin()].empty();
+  std::vector<int> images;
+  if (has_seam) images = first.link_seams[l - first.links.begin()];
+  for (const auto& [group, whole] : {std::pair(g, whole_g), {h, whole_h}}) {
+    if (!whole && has_seam) continue;
+    const std::vector<int> held = GroupImages(groups_.at(group));
+    images.insert(images.end(), held.begin(), held.end());
+  }
   std::sort(images.begin(), images.end());
   images.erase(std::unique(images.begin(), images.end()), images.end());
   std::vector<int> seams;
@@ -209,6 +232,15 @@ std::string TmrMapperStages::GroupPlanLines() const {
     lines += "seams " + std::to_string(seam_images_.size()) + " 0 0 " +
              JoinNumbers(seam_images_) + "\n";
   }
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const ClusterGroup& group = groups_[g];
+    for (size_t l = 0; l < group.link_seams.size(); ++l) {
+      lines += "seam." + std::to_string(g) + "." +
+               std::to_string(group.links[l]) + " " +
+               std::to_string(group.link_seams[l].size()) + " 0 0 " +
+               JoinNumbers(group.link_seams[l]) + "\n";
+    }
+  }
   return lines;
 }
 
@@ -218,6 +250,18 @@ bool TmrMapperStages::ReadGroupPlanLine(const std::string& id, int images,
   if (id == "seams") {
     *rest >> list;
     seam_images_ = ReadNumbers(list);
+    return true;
+  }
+  if (id.rfind("seam.", 0) == 0) {  // seam.G.H: the seam of G's link to H
+    const size_t dot = id.find('.', 5);
+    if (dot == std::string::npos) throw std::invalid_argument(id);
+    ClusterGroup& group = groups_.at(std::stoi(id.substr(5, dot - 5)));
+    const auto l = std::find(group.links.begin(), group.links.end(),
+                             std::stoi(id.substr(dot + 1)));
+    if (l == group.links.end()) throw std::invalid_argument("no link " + id);
+    group.link_seams.resize(group.links.size());
+    *rest >> list;
+    group.link_seams[l - group.links.begin()] = ReadNumbers(list);
     return true;
   }
   if (id.rfind("merge.", 0) != 0) return false;
@@ -274,6 +318,11 @@ bool TmrMapperStages::GroupsFitTheTree() const {
         !in_range(group.extra_images, num_images) ||
         !in_range(group.links, static_cast<int>(groups_.size())))
       return false;
+    if (!group.link_seams.empty() &&
+        group.link_seams.size() != group.links.size())
+      return false;
+    for (const std::vector<int>& seam : group.link_seams)
+      if (!in_range(seam, num_images)) return false;
     for (const int k : group.kernels) ++times_grouped[k];
   }
   return groups_.empty()

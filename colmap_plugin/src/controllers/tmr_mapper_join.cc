@@ -163,7 +163,7 @@ bool TmrMapperStages::AlignGroupPair(int g, int h, bool inner_g, bool inner_h,
                                      std::vector<ModelPairAlignment>* aligned,
                                      std::string* error) const {
   const auto start = Clock::now();
-  const std::vector<int> images = PairSeamImages(g, h);
+  const std::vector<int> images = PairSeamImages(g, h, inner_g, inner_h);
   if (images.size() < 2) return true;
   const auto cache = LoadTaskDatabaseCache(
       o_.database_path, ImageIdsOf(tree_, images), work_.JoinDatabase(),

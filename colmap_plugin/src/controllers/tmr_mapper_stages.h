@@ -48,6 +48,10 @@ class TmrMapperStages {
     // The later groups that images both hold or verified pairs link it to
     // (the pairs of groups that the join aligns).
     std::vector<int> links;
+    // Each link's seam (tree indices, sorted): the images both hold, and
+    // those of verified pairs across the two groups. Empty lists in a plan
+    // written before them.
+    std::vector<std::vector<int>> link_seams;
   };
 
   explicit TmrMapperStages(const TmrMapperOptions& options);
@@ -195,16 +199,19 @@ class TmrMapperStages {
   // loads: those several groups hold, and those of verified pairs across
   // groups.
   std::vector<int> SeamImages(const MatchGraph& graph) const;
-  // Each group's links (ClusterGroup::links): images both hold, or
-  // verified pairs between their images.
+  // Each group's links and their seams (ClusterGroup::links,
+  // link_seams): images both hold, or verified pairs between their images.
   void LinkGroups(const MatchGraph& graph);
-  // The seam images that the join loads to align groups g and h: those of
-  // either group (tree indices, sorted).
-  std::vector<int> PairSeamImages(int g, int h) const;
+  // The seam images that the join loads to align groups g and h (tree
+  // indices, sorted): those of their link's seam, and all the seams of g
+  // (whole_g) or of h (whole_h), whose own models are aligned with that
+  // pair. A plan without link seams: all the seams of both.
+  std::vector<int> PairSeamImages(int g, int h, bool whole_g,
+                                  bool whole_h) const;
   // The plan.txt lines of the merge stage by parts, which ReadPlanMemory
   // reads back: one per group ("merge.G IMAGES 0 MIB kernels=K,...
   // extra=I,... links=G,...", extra and links maybe empty), then
-  // "seams N 0 0 I,...".
+  // "seams N 0 0 I,...", then one per link ("seam.G.H N 0 0 I,...").
   std::string GroupPlanLines() const;
   // Whether the groups read from a plan name kernels and images of the
   // tree, each kernel in one group.
