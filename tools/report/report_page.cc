@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -116,9 +117,10 @@ ModelContents ReadModelContents(const fs::path& path, const std::string& name,
   // images.bin: the registered images, each with its pose and keypoints.
   std::ifstream images = OpenModelFile(path / "images.bin");
   const uint64_t num_images = Read<uint64_t>(&images);
-  std::vector<std::pair<colmap::image_t, size_t>> order;
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<std::array<Eigen::Vector3d, 3>> axes;
+  // By image id: the centre and the axes.
+  std::map<colmap::image_t,
+           std::pair<Eigen::Vector3d, std::array<Eigen::Vector3d, 3>>>
+      by_id;
   for (uint64_t i = 0; i < num_images && images; ++i) {
     const colmap::image_t id = Read<colmap::image_t>(&images);
     Eigen::Quaterniond rotation;
@@ -137,18 +139,16 @@ ModelContents ReadModelContents(const fs::path& path, const std::string& name,
         std::ios::cur);
     const Eigen::Matrix3d r = rotation.normalized().toRotationMatrix();
     const double f = std::max(camera.MeanFocalLength(), 1e-9);
-    order.emplace_back(id, centres.size());
-    centres.push_back(-r.transpose() * translation);
-    axes.push_back({r.row(2).transpose(),
-                    r.row(0).transpose() * camera.width / (2 * f),
-                    r.row(1).transpose() * camera.height / (2 * f)});
+    by_id[id] = {
+        -r.transpose() * translation,
+        {r.row(2).transpose(), r.row(0).transpose() * camera.width / (2 * f),
+         r.row(1).transpose() * camera.height / (2 * f)}};
   }
   if (!images)
     throw std::runtime_error("'" + path.string() + "/images.bin' is cut short");
-  std::sort(order.begin(), order.end());
-  for (const auto& [id, i] : order) {
-    contents.centres.push_back(centres[i]);
-    contents.camera_axes.push_back(axes[i]);
+  for (const auto& [id, camera] : by_id) {
+    contents.centres.push_back(camera.first);
+    contents.camera_axes.push_back(camera.second);
   }
   // points3D.bin: every point's position, colour, error and track.
   std::ifstream points = OpenModelFile(path / "points3D.bin");

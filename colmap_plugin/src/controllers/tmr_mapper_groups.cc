@@ -1,16 +1,15 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // TmrMapperStages' merge stage by parts (docs/distributed.md): groups of
 // image clusters that fit the memory budget (GroupClusters), each merged on
-// its own correspondences, then joined by the images several groups hold.
+// its own correspondences, then joined by the images several groups hold
+// (their seams: tmr_mapper_seams.cc).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <numeric>
-#include <set>
 #include <sstream>
 
 #include "controllers/memory_budget.h"
@@ -65,7 +64,7 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   // that of its images together.
   const auto group_cost = [&](const std::vector<int>& kernels) {
     return MergePeakMiB(
-        LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0, {}})),
+        LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0, {}, {}})),
         o_.refinement.points_per_image, o_.refinement.max_block_images);
   };
   std::vector<int> cluster_of(n, -1);
@@ -80,7 +79,7 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   if (grouped.size() < 2) return;  // one group is the whole merge stage
   std::vector<int> group_of_kernel(tree_.kernels.size());
   for (int g = 0; g < static_cast<int>(grouped.size()); ++g) {
-    groups_.push_back({grouped[g], {}, 0, 0.0, {}});
+    groups_.push_back({grouped[g], {}, 0, 0.0, {}, {}});
     for (const int k : grouped[g]) group_of_kernel[k] = g;
   }
   // The images of no group's clusters or halos (unclustered) go to the
@@ -147,76 +146,6 @@ std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
   std::sort(images.begin(), images.end());
   images.erase(std::unique(images.begin(), images.end()), images.end());
   return images;
-}
-
-std::vector<int> TmrMapperStages::SeamImages(const MatchGraph& graph) const {
-  // The groups that hold each image.
-  std::vector<std::vector<int>> groups_of(graph.NumImages());
-  for (int g = 0; g < static_cast<int>(groups_.size()); ++g)
-    for (const int i : GroupImages(groups_[g])) groups_of.at(i).push_back(g);
-  std::vector<bool> seam(graph.NumImages(), false);
-  for (int i = 0; i < graph.NumImages(); ++i) seam[i] = groups_of[i].size() > 1;
-  for (const MatchGraphPair& pair : graph.pairs) {
-    const std::vector<int>& a = groups_of[pair.image1];
-    const std::vector<int>& b = groups_of[pair.image2];
-    if (std::find_first_of(a.begin(), a.end(), b.begin(), b.end()) == a.end())
-      seam[pair.image1] = seam[pair.image2] = true;
-  }
-  std::vector<int> seams;
-  for (int i = 0; i < graph.NumImages(); ++i)
-    if (seam[i]) seams.push_back(i);
-  return seams;
-}
-
-void TmrMapperStages::LinkGroups(const MatchGraph& graph) {
-  std::vector<std::vector<int>> groups_of(graph.NumImages());
-  for (int g = 0; g < static_cast<int>(groups_.size()); ++g)
-    for (const int i : GroupImages(groups_[g])) groups_of.at(i).push_back(g);
-  // Each link's seam images, by the link's first group.
-  std::vector<std::map<int, std::set<int>>> links(groups_.size());
-  const auto link = [&](int g, int h, int i, int j) {
-    if (g == h) return;
-    std::set<int>& seam = links[std::min(g, h)][std::max(g, h)];
-    seam.insert(i);
-    seam.insert(j);
-  };
-  for (int i = 0; i < graph.NumImages(); ++i)
-    for (const int g : groups_of[i])
-      for (const int h : groups_of[i]) link(g, h, i, i);
-  for (const MatchGraphPair& pair : graph.pairs)
-    for (const int g : groups_of[pair.image1])
-      for (const int h : groups_of[pair.image2])
-        link(g, h, pair.image1, pair.image2);
-  for (size_t g = 0; g < groups_.size(); ++g) {
-    groups_[g].links.clear();
-    groups_[g].link_seams.clear();
-    for (const auto& [h, seam] : links[g]) {
-      groups_[g].links.push_back(h);
-      groups_[g].link_seams.emplace_back(seam.begin(), seam.end());
-    }
-  }
-}
-
-std::vector<int> TmrMapperStages::PairSeamImages(int g, int h, bool whole_g,
-                                                 bool whole_h) const {
-  const ClusterGroup& first = groups_.at(g);
-  const auto l = std::find(first.links.begin(), first.links.end(), h);
-  const bool has_seam = l != first.links.end() &&
-                        first.link_seams.size() == first.links.size() &&
-                        !first.link_seams[l - first.links.begin()].empty();
-  std::vector<int> images;
-  if (has_seam) images = first.link_seams[l - first.links.begin()];
-  for (const auto& [group, whole] : {std::pair(g, whole_g), {h, whole_h}}) {
-    if (!whole && has_seam) continue;
-    const std::vector<int> held = GroupImages(groups_.at(group));
-    images.insert(images.end(), held.begin(), held.end());
-  }
-  std::sort(images.begin(), images.end());
-  images.erase(std::unique(images.begin(), images.end()), images.end());
-  std::vector<int> seams;
-  std::set_intersection(images.begin(), images.end(), seam_images_.begin(),
-                        seam_images_.end(), std::back_inserter(seams));
-  return seams;
 }
 
 std::string TmrMapperStages::GroupPlanLines() const {

@@ -195,6 +195,8 @@ class TmrMapperStages {
   void PlanGroups(const MatchGraph& graph);
   // A group's images (tree indices, sorted).
   std::vector<int> GroupImages(const ClusterGroup& group) const;
+  // Per image (tree index), the groups that hold it.
+  std::vector<std::vector<int>> GroupsOfImages(int num_images) const;
   // The images of the seams between groups, whose correspondences the join
   // loads: those several groups hold, and those of verified pairs across
   // groups.
