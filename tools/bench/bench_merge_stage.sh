@@ -22,7 +22,8 @@
 # wall time and peak; the totals are then their sum and the largest peak.
 # REUSE=1 keeps the run's plan, tasks and merged groups (out/...SCENE.jobs
 # lists the groups done), so that a stage too long for one session goes on
-# where the last call stopped.
+# where the last call stopped. With JOBS=1 the join keeps the work folder
+# (--Tmr.keep_work 1), so that REUSE=1 runs the join again alone.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLMAP="${TMR_DEPS_PREFIX:-/opt/tmr-deps}/colmap-4.1.1/bin/colmap"
@@ -59,7 +60,7 @@ for scene in "$@"; do
     done
   fi
   /usr/bin/time -f "%e %M" -o "$run.merge.time" "$BIN/tmr_mapper" merge --plan "$run/plan.txt" \
-    --Mapper.num_threads "$THREADS" >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
+    --Mapper.num_threads "$THREADS" ${JOBS:+--Tmr.keep_work 1} >"$run.merge.log" 2>&1 || { tail -3 "$run.merge.log"; continue; }
   read -r wall peak < <(tail -1 "$run.merge.time" | awk '{printf "%s %.0f\n", $1, $2 / 1024}')
   if [[ -n "${JOBS:-}" ]]; then  # one job after another: the sum, the largest peak
     echo "$scene join: $wall $peak (wall s, peak MiB)"

@@ -70,14 +70,20 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
 }
 
 double JoinPeakMiB(const MemoryLoad& largest_group,
-                   const MemoryLoad& pair_seams) {
+                   const MemoryLoad& job_seams) {
   const double group =
       kModelsPerMatchedKeypoint * largest_group.matched_keypoints / kMiB;
-  const double pair =
-      kModelsPerMatchedKeypoint * pair_seams.matched_keypoints / kMiB +
-      CorrespondencesMiB(pair_seams);
-  return kProcessMiB + std::max(pair, group);
+  const double job =
+      kModelsPerMatchedKeypoint * job_seams.matched_keypoints / kMiB +
+      CorrespondencesMiB(job_seams);
+  return kProcessMiB + std::max(job, group);
 }
+
+double JoinJobMiB(double join_mib) {
+  return std::max(1.0, join_mib - kProcessMiB);
+}
+
+double ProcessMiB() { return kProcessMiB; }
 
 MemoryBudget ResolveMemoryBudget(double budget_gib) {
   if (budget_gib > 0) return {budget_gib * 1024.0, "--Tmr.memory_budget"};

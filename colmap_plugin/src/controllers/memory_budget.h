@@ -39,11 +39,17 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
                     int max_block_images);
 // The join of a merge stage by parts (docs/distributed.md), one step at a
 // time: one group's models (`largest_group`'s load), read to make their
-// light copies or to write the scenes; or the light copies of two linked
-// groups beside the correspondences of their seams (`pair_seams`, the
-// largest such pair's load).
+// light copies or to write the scenes; or one alignment job, the light
+// copies of a group's or two linked groups' models beside the
+// correspondences of their seam (`job_seams`, the largest job's load).
 double JoinPeakMiB(const MemoryLoad& largest_group,
-                   const MemoryLoad& pair_seams);
+                   const MemoryLoad& job_seams);
+// What each of the join's alignment jobs may hold beside the others, from
+// the join's expected peak (JoinPeakMiB): the jobs run side by side while
+// their sum fits the budget less ProcessMiB().
+double JoinJobMiB(double join_mib);
+// A process with COLMAP loaded, before any data.
+double ProcessMiB();
 
 // The memory every step must fit (--Tmr.memory_budget).
 struct MemoryBudget {

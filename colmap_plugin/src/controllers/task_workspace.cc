@@ -108,8 +108,15 @@ std::string TaskWorkspace::GroupSeamModels(int g) const {
   return (folder_ / ("group" + std::to_string(g) + "_seams")).string();
 }
 
-std::string TaskWorkspace::JoinDatabase() const {
-  return (folder_ / "join.db").string();
+std::string TaskWorkspace::GroupLightCopy(int g, int linked, int m) const {
+  return (fs::path(GroupSeamModels(g)) /
+          (linked < 0 ? "all" : "link" + std::to_string(linked)) /
+          std::to_string(m))
+      .string();
+}
+
+std::string TaskWorkspace::JoinDatabase(int job) const {
+  return (folder_ / ("join" + std::to_string(job) + ".db")).string();
 }
 
 std::optional<ReconstructionTaskResult> TaskWorkspace::RunOrReuse(

@@ -50,13 +50,15 @@ class TaskWorkspace {
   std::string MergeDatabase() const;
   // A merge stage by parts: group g's task database and its models
   // (folder/0, 1, ... and a record, TmrMapperStages::MergeGroup), the
-  // join's light copies of those models (MakeSeamModel, folder/0, 1, ...),
-  // and the task database of the seam images of the two groups the join
-  // links at a time.
+  // join's light copies of those models (MakeSeamModel, all in
+  // GroupSeamModels(g)): model m's on the seam of g's link to group
+  // `linked`, or on all of g's seams (linked < 0); and the task database
+  // of the seam images of the join's alignment job `job`.
   std::string GroupDatabase(int g) const;
   std::string GroupModels(int g) const;
   std::string GroupSeamModels(int g) const;
-  std::string JoinDatabase() const;
+  std::string GroupLightCopy(int g, int linked, int m) const;
+  std::string JoinDatabase(int job) const;
 
   // Whether the task whose model is `model` has finished: its record and
   // (when it succeeded) its model are complete; the record in `result`.

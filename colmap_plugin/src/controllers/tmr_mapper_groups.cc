@@ -120,18 +120,19 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
   }
   seam_images_ = SeamImages(graph);
   LinkGroups(graph);
-  // The join aligns one linked pair of groups at a time (at most on both
-  // groups' whole seams).
-  MemoryLoad largest_pair;
+  // The join's alignment jobs: a group's own models on all its seams (when
+  // its merge leaves several), two linked groups' on their link's seam.
+  MemoryLoad largest_job;
+  const auto job = [&](const std::vector<int>& images) {
+    const MemoryLoad load = LoadOfImages(graph, images);
+    if (load.matched_keypoints > largest_job.matched_keypoints)
+      largest_job = load;
+  };
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    for (const int h : groups_[g].links) {
-      const MemoryLoad pair =
-          LoadOfImages(graph, PairSeamImages(g, h, true, true));
-      if (pair.matched_keypoints > largest_pair.matched_keypoints)
-        largest_pair = pair;
-    }
+    job(GroupSeamImages(g));
+    for (const int h : groups_[g].links) job(LinkSeamImages(g, h));
   }
-  memory_mib_["merge"] = JoinPeakMiB(largest, largest_pair);
+  memory_mib_["merge"] = JoinPeakMiB(largest, largest_job);
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {

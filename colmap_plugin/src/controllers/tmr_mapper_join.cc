@@ -1,16 +1,23 @@
 // Copyright (c) 2026, the tmr authors. BSD-3-Clause.
 // TmrMapperStages' join of the merge stage by parts (docs/distributed.md):
-// light copies of the groups' models on their seams (MakeSeamModel), each
-// linked pair of groups aligned on its own seams' correspondences, one
-// similarity averaging, then each scene written piece by piece
-// (ModelWriter), so that no step holds every group's models or seams.
+// light copies of the groups' models on their seams (MakeSeamModel), the
+// models of each linked pair of groups (and of a group its merge left in
+// several) aligned on their seam's correspondences, side by side within
+// the budget, one similarity averaging, then each scene written piece by
+// piece (ModelWriter), so that no step holds every group's models or
+// seams.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <iterator>
 #include <memory>
 #include <unordered_set>
 
+#include <colmap/util/threading.h>
+
+#include "controllers/memory_budget.h"
+#include "controllers/task_graph.h"
 #include "controllers/tmr_mapper_options.h"
 #include "controllers/tmr_mapper_stages.h"
 #include "io/model_writer.h"
@@ -30,9 +37,16 @@ using Clock = std::chrono::steady_clock;
 // One model of a group, as the join numbers it.
 struct TmrMapperStages::JoinEntry {
   int group = 0;
-  std::string path;        // the whole model
-  std::string seam_model;  // its light copy (MakeSeamModel)
+  int index = 0;     // its number in its group's folder
+  std::string path;  // the whole model
   JoinModel model;
+};
+
+// One alignment job of the join: group g's own models on all its seams
+// (h < 0), or those of linked groups g < h on their link's seam.
+struct TmrMapperStages::JoinJob {
+  int g = 0;
+  int h = -1;
 };
 
 bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
@@ -45,28 +59,58 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   const std::vector<uint32_t> seam_ids = ImageIdsOf(tree_, seam_images_);
   const std::unordered_set<colmap::image_t> seams(seam_ids.begin(),
                                                   seam_ids.end());
-  // Light copies of every group's models, one group's models at a time.
+  const std::vector<std::pair<int, int>> links = LinkedGroupPairs();
+  std::vector<std::vector<int>> linked(groups_.size());
+  for (const auto& [g, h] : links) {
+    linked[g].push_back(h);
+    linked[h].push_back(g);
+  }
+  // Light copies of every group's models, one group's models at a time:
+  // on each link's seam, and on all the group's seams when its merge left
+  // several models (whose alignment is then a job of its own).
   std::vector<JoinEntry> entries;
+  std::vector<JoinJob> jobs;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     if (!GroupMerged(g)) {
       return Fail("group " + std::to_string(g) +
                       " of the merge stage has not been merged",
                   error);
     }
-    const fs::path seam_folder(work_.GroupSeamModels(g));
     std::error_code ec;
-    fs::remove_all(seam_folder, ec);
-    for (int m = 0;; ++m) {
+    fs::remove_all(work_.GroupSeamModels(g), ec);
+    int num_models = 0;
+    while (fs::is_directory(fs::path(work_.GroupModels(g)) /
+                            std::to_string(num_models)))
+      ++num_models;
+    std::vector<std::pair<int, std::unordered_set<colmap::image_t>>> copies;
+    if (num_models > 1) {
+      copies.emplace_back(-1, seams);
+      jobs.push_back({g, -1});
+    }
+    for (const int h : linked[g]) {
+      const std::vector<uint32_t> ids = ImageIdsOf(tree_, LinkSeamImages(g, h));
+      copies.emplace_back(
+          h, std::unordered_set<colmap::image_t>(ids.begin(), ids.end()));
+    }
+    for (int m = 0; m < num_models; ++m) {
       const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
-      if (!fs::is_directory(path)) break;
       colmap::Reconstruction model;
       model.ReadBinary(path.string());
-      colmap::Reconstruction light;
-      MakeSeamModel(model, seams, &light);
-      const fs::path light_path = seam_folder / std::to_string(m);
-      fs::create_directories(light_path, ec);
-      light.WriteBinary(light_path.string());
-      JoinEntry entry{g, path.string(), light_path.string(), {}};
+      colmap::ThreadPool pool(std::max(1, num_threads));
+      std::vector<std::shared_future<void>> written;
+      for (const auto& copy : copies) {
+        written.push_back(pool.AddTask([&, m] {
+          colmap::Reconstruction light;
+          MakeSeamModel(model, copy.second, &light);
+          const std::string light_path = work_.GroupLightCopy(g, copy.first, m);
+          std::error_code created;
+          fs::create_directories(light_path, created);
+          light.WriteBinary(light_path);
+        }));
+      }
+      for (const std::shared_future<void>& copy : written)
+        copy.get();  // rethrows
+      JoinEntry entry{g, m, path.string(), {}};
       entry.model.num_images = model.NumRegImages();
       for (const colmap::image_t id : model.RegImageIds()) {
         if (seams.count(id))
@@ -87,17 +131,11 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
           std::to_string(entries.size()) + " models, " +
               std::to_string(seam_ids.size()) +
               " images on the seams (in several groups, or matched across)"});
+  for (const auto& [g, h] : links) jobs.push_back({g, h});
   std::vector<ModelPairAlignment> aligned;
-  // Each group's own models are linked too, in the first pair it is in.
-  std::vector<bool> inner_aligned(groups_.size(), false);
-  for (const auto& [g, h] : LinkedGroupPairs()) {
-    const bool inner_g = !inner_aligned[g], inner_h = !inner_aligned[h];
-    inner_aligned[g] = inner_aligned[h] = true;
-    if (!AlignGroupPair(g, h, inner_g, inner_h, entries, num_threads, record,
-                        &aligned, error))
-      return false;
-    ReleaseFreedMemory();
-  }
+  if (!RunJoinJobs(jobs, entries, num_threads, record, progress, &aligned,
+                   error))
+    return false;
   std::vector<JoinModel> models;
   for (const JoinEntry& entry : entries) models.push_back(entry.model);
   std::vector<JoinedScene> joined;
@@ -105,7 +143,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   {
     const SceneAssembler placer(AssemblyOptions(o_, num_threads),
                                 std::make_shared<colmap::DatabaseCache>(),
-                                work_.JoinDatabase(), tree_.image_names,
+                                work_.JoinDatabase(0), tree_.image_names,
                                 record);
     joined = placer.PlaceJoin(models, std::move(aligned), &weak_links);
   }
@@ -157,54 +195,101 @@ std::vector<std::pair<int, int>> TmrMapperStages::LinkedGroupPairs() const {
   return pairs;
 }
 
-bool TmrMapperStages::AlignGroupPair(int g, int h, bool inner_g, bool inner_h,
-                                     const std::vector<JoinEntry>& entries,
-                                     int num_threads, const Record& record,
-                                     std::vector<ModelPairAlignment>* aligned,
-                                     std::string* error) const {
+bool TmrMapperStages::RunJoinJobs(const std::vector<JoinJob>& jobs,
+                                  const std::vector<JoinEntry>& entries,
+                                  int num_threads, const Record& record,
+                                  const Progress& progress,
+                                  std::vector<ModelPairAlignment>* aligned,
+                                  std::string* error) const {
+  // An older plan without the join's expected memory: one job at a time.
+  const double job_mib =
+      JoinJobMiB(MergeMemoryMiB() > 0 ? MergeMemoryMiB() : budget_.mib);
+  const double budget_mib = std::max(1.0, budget_.mib - ProcessMiB());
+  const int side_by_side = std::max(
+      1, std::min(num_threads, static_cast<int>(budget_mib / job_mib)));
+  if (progress) {
+    progress("join: " + std::to_string(jobs.size()) +
+             " alignment jobs, up to " + std::to_string(side_by_side) +
+             " at a time (each expected to need up to " + GiBText(job_mib) +
+             ")");
+  }
+  std::vector<std::vector<ModelPairAlignment>> results(jobs.size());
+  std::vector<std::string> errors(jobs.size());
+  TaskGraph graph;
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    TaskGraph::Task task;
+    task.name = "join job " + std::to_string(j);
+    task.cost = 1.0;
+    task.memory = job_mib;
+    task.run = [&, j](int threads) {
+      if (!AlignJoinJob(jobs[j], static_cast<int>(j), entries, threads, record,
+                        &results[j], &errors[j]) &&
+          errors[j].empty())
+        errors[j] = "join job " + std::to_string(j) + " failed";
+      ReleaseFreedMemory();
+    };
+    graph.Add(std::move(task));
+  }
+  graph.Run(side_by_side, budget_mib);
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    if (!errors[j].empty()) return Fail(errors[j], error);
+    aligned->insert(aligned->end(), std::make_move_iterator(results[j].begin()),
+                    std::make_move_iterator(results[j].end()));
+  }
+  return true;
+}
+
+bool TmrMapperStages::AlignJoinJob(const JoinJob& job, int number,
+                                   const std::vector<JoinEntry>& entries,
+                                   int num_threads, const Record& record,
+                                   std::vector<ModelPairAlignment>* aligned,
+                                   std::string* error) const {
   const auto start = Clock::now();
-  const std::vector<int> images = PairSeamImages(g, h, inner_g, inner_h);
+  const int g = job.g, h = job.h;
+  const std::vector<int> images =
+      h < 0 ? GroupSeamImages(g) : LinkSeamImages(g, h);
   if (images.size() < 2) return true;
+  const std::string database = work_.JoinDatabase(number);
   const auto cache = LoadTaskDatabaseCache(
-      o_.database_path, ImageIdsOf(tree_, images), work_.JoinDatabase(),
+      o_.database_path, ImageIdsOf(tree_, images), database,
       o_.mapper.min_num_matches, o_.mapper.ignore_watermarks, error);
+  std::error_code ec;
+  fs::remove(database, ec);  // held in memory from here
   if (!cache) return false;
-  // The two groups' light copies, in the join's numbering (so that each
-  // pair keeps model1 < model2).
-  std::vector<int> number, group_of;
+  // The light copies of the job's models, in the join's numbering (so that
+  // each pair keeps model1 < model2).
+  std::vector<int> number_of, group_of;
   std::vector<std::unique_ptr<colmap::Reconstruction>> light;
   std::vector<const colmap::Reconstruction*> models;
   for (int e = 0; e < static_cast<int>(entries.size()); ++e) {
-    if (entries[e].group != g && entries[e].group != h) continue;
-    number.push_back(e);
-    group_of.push_back(entries[e].group);
+    const int group = entries[e].group;
+    if (group != g && group != h) continue;
+    number_of.push_back(e);
+    group_of.push_back(group);
     light.push_back(std::make_unique<colmap::Reconstruction>());
-    light.back()->ReadBinary(entries[e].seam_model);
+    light.back()->ReadBinary(work_.GroupLightCopy(
+        group, h < 0 ? -1 : g + h - group, entries[e].index));
     models.push_back(light.back().get());
   }
   const SceneAssembler assembler(AssemblyOptions(o_, num_threads), cache,
-                                 work_.JoinDatabase(), tree_.image_names,
-                                 record);
-  std::vector<ModelPairAlignment> pairs = assembler.AlignModelPairs(
-      models, /*images_first=*/true, [&](int a, int b) {
-        if (group_of[a] != group_of[b]) return true;
-        return group_of[a] == g ? inner_g : inner_h;
-      });
-  for (ModelPairAlignment& pair : pairs) {
-    pair.model1 = number[pair.model1];
-    pair.model2 = number[pair.model2];
+                                 database, tree_.image_names, record);
+  *aligned = assembler.AlignModelPairs(
+      models, /*images_first=*/true,
+      [&](int a, int b) { return h < 0 || group_of[a] != group_of[b]; });
+  for (ModelPairAlignment& pair : *aligned) {
+    pair.model1 = number_of[pair.model1];
+    pair.model2 = number_of[pair.model2];
     if (pair.link) {
       pair.link->model1 = pair.model1;
       pair.link->model2 = pair.model2;
     }
   }
-  record(
-      {"join: align groups " + std::to_string(g) + " and " + std::to_string(h),
-       static_cast<int>(images.size()), 0, SecondsSince(start), true,
-       std::to_string(pairs.size()) + " linked pairs of models, on " +
-           std::to_string(images.size()) + " seam images"});
-  aligned->insert(aligned->end(), std::make_move_iterator(pairs.begin()),
-                  std::make_move_iterator(pairs.end()));
+  record({"join: align " + (h < 0 ? "the models of group " + std::to_string(g)
+                                  : "groups " + std::to_string(g) + " and " +
+                                        std::to_string(h)),
+          static_cast<int>(images.size()), 0, SecondsSince(start), true,
+          std::to_string(aligned->size()) + " linked pairs of models, on " +
+              std::to_string(images.size()) + " seam images"});
   return true;
 }
 

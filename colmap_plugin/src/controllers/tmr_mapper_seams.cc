@@ -64,28 +64,30 @@ void TmrMapperStages::LinkGroups(const MatchGraph& graph) {
   }
 }
 
-std::vector<int> TmrMapperStages::PairSeamImages(int g, int h, bool whole_g,
-                                                 bool whole_h) const {
-  const ClusterGroup& first = groups_.at(g);
-  const auto l = std::find(first.links.begin(), first.links.end(), h);
-  const std::vector<int>* link_seam =
-      l != first.links.end() && first.link_seams.size() == first.links.size()
-          ? &first.link_seams[l - first.links.begin()]
-          : nullptr;
-  const bool has_seam = link_seam && !link_seam->empty();
-  std::vector<int> images;
-  if (has_seam) images = *link_seam;
-  for (const auto& [group, whole] : {std::pair(g, whole_g), {h, whole_h}}) {
-    if (!whole && has_seam) continue;
-    const std::vector<int> held = GroupImages(groups_.at(group));
-    images.insert(images.end(), held.begin(), held.end());
-  }
-  std::sort(images.begin(), images.end());
-  images.erase(std::unique(images.begin(), images.end()), images.end());
+std::vector<int> TmrMapperStages::GroupSeamImages(int g) const {
+  const std::vector<int> held = GroupImages(groups_.at(g));
   std::vector<int> seams;
-  std::set_intersection(images.begin(), images.end(), seam_images_.begin(),
+  std::set_intersection(held.begin(), held.end(), seam_images_.begin(),
                         seam_images_.end(), std::back_inserter(seams));
   return seams;
+}
+
+std::vector<int> TmrMapperStages::LinkSeamImages(int g, int h) const {
+  const ClusterGroup& first = groups_.at(std::min(g, h));
+  const auto l =
+      std::find(first.links.begin(), first.links.end(), std::max(g, h));
+  if (l != first.links.end() && first.link_seams.size() == first.links.size()) {
+    const std::vector<int>& link = first.link_seams[l - first.links.begin()];
+    std::vector<int> seams;  // as the light copies have them
+    std::set_intersection(link.begin(), link.end(), seam_images_.begin(),
+                          seam_images_.end(), std::back_inserter(seams));
+    return seams;
+  }
+  std::vector<int> images = GroupSeamImages(g), other = GroupSeamImages(h);
+  images.insert(images.end(), other.begin(), other.end());
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end()), images.end());
+  return images;
 }
 
 }  // namespace tmr

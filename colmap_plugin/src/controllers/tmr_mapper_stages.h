@@ -159,8 +159,9 @@ class TmrMapperStages {
                   const Progress& progress, std::string* error) const;
   // Then the join (tmr_mapper_join.cc): light copies of the groups' models
   // (MakeSeamModel, one group's models in memory at a time), each linked
-  // pair of groups aligned on the correspondences of its seams
-  // (SceneAssembler::AlignModelPairs, two groups' light copies in memory),
+  // pair of groups aligned on the correspondences of its link's seam, and
+  // each group's own models when its merge left several
+  // (SceneAssembler::AlignModelPairs, side by side within the budget),
   // the models placed by one similarity averaging (PlaceJoin), each scene
   // written to output_path piece by piece (ModelWriter), one group's model
   // in memory at a time. Every group must have been merged.
@@ -204,12 +205,12 @@ class TmrMapperStages {
   // Each group's links and their seams (ClusterGroup::links,
   // link_seams): images both hold, or verified pairs between their images.
   void LinkGroups(const MatchGraph& graph);
-  // The seam images that the join loads to align groups g and h (tree
-  // indices, sorted): those of their link's seam, and all the seams of g
-  // (whole_g) or of h (whole_h), whose own models are aligned with that
-  // pair. A plan without link seams: all the seams of both.
-  std::vector<int> PairSeamImages(int g, int h, bool whole_g,
-                                  bool whole_h) const;
+  // The seam images (tree indices, sorted) that the join loads to align
+  // group g's own models: all of g's seams.
+  std::vector<int> GroupSeamImages(int g) const;
+  // Those it loads to align the models of linked groups g and h: their
+  // link's seam; all the seams of both for a plan without link seams.
+  std::vector<int> LinkSeamImages(int g, int h) const;
   // The plan.txt lines of the merge stage by parts, which ReadPlanMemory
   // reads back: one per group ("merge.G IMAGES 0 MIB kernels=K,...
   // extra=I,... links=G,...", extra and links maybe empty), then
@@ -238,18 +239,25 @@ class TmrMapperStages {
   void FinishScenes(size_t num_scenes, std::vector<TmrWeakLink> weak_links,
                     const Progress& progress, TmrMapperReport* report) const;
   // The join's steps (tmr_mapper_join.cc): the pairs of groups it aligns
-  // (ClusterGroup::links; every pair for a plan written without them),
-  // and the alignments of one such pair's models on the correspondences of
-  // its seams (PairSeamImages), appended to *aligned in the join's
-  // numbering of `entries`: the pairs across the two groups, and those
-  // within g (inner_g) or within h (inner_h), which the join aligns once.
+  // (ClusterGroup::links; every pair for a plan written without them);
+  // its alignment jobs run side by side while their expected memory
+  // (JoinJobMiB) fits the budget, their alignments appended to *aligned in
+  // job order; one job (number `number`, which names its task database):
+  // the pairs of models it links on its seam's correspondences, in the
+  // join's numbering of `entries`.
   struct JoinEntry;
+  struct JoinJob;
   std::vector<std::pair<int, int>> LinkedGroupPairs() const;
-  bool AlignGroupPair(int g, int h, bool inner_g, bool inner_h,
-                      const std::vector<JoinEntry>& entries, int num_threads,
-                      const Record& record,
-                      std::vector<ModelPairAlignment>* aligned,
-                      std::string* error) const;
+  bool RunJoinJobs(const std::vector<JoinJob>& jobs,
+                   const std::vector<JoinEntry>& entries, int num_threads,
+                   const Record& record, const Progress& progress,
+                   std::vector<ModelPairAlignment>* aligned,
+                   std::string* error) const;
+  bool AlignJoinJob(const JoinJob& job, int number,
+                    const std::vector<JoinEntry>& entries, int num_threads,
+                    const Record& record,
+                    std::vector<ModelPairAlignment>* aligned,
+                    std::string* error) const;
   // Reads the expected memory of every step from plan.txt (0 where an
   // older plan has none).
   bool ReadPlanMemory(std::string* error);

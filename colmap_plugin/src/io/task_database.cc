@@ -3,6 +3,7 @@
 
 #include <colmap/scene/database.h>
 #include <colmap/sensor/models.h>
+#include <colmap/util/types.h>
 
 #include <array>
 #include <filesystem>
@@ -34,6 +35,7 @@ bool WriteTaskDatabase(const std::string& source_db,
   for (size_t i = 0; i < image_ids.size(); ++i)
     ids << (i ? "," : "") << image_ids[i];
   const std::string set = "(" + ids.str() + ")";
+  const std::string pair_base = std::to_string(colmap::kMaxNumImages);
   try {
     // The busy timeout also holds for the attached source: readers of a
     // WAL database whose -shm index is missing (a writer was killed, or
@@ -70,12 +72,19 @@ bool WriteTaskDatabase(const std::string& source_db,
         "INSERT INTO keypoints(image_id, rows, cols, data) "
         "  SELECT image_id, rows, cols, data FROM src.keypoints WHERE "
         "image_id IN chosen;"
+        // A pair's id is image_id1 * kMaxNumImages + image_id2 with
+        // image_id1 < image_id2 (COLMAP 3.x and 4.x): each chosen image's
+        // pairs as first image are one range of the primary key, so that
+        // the copy reads the task's pairs, not the whole table.
         "INSERT INTO two_view_geometries(pair_id, rows, cols, data, config, "
         "F, E, H, qvec, tvec) "
-        "  SELECT pair_id, rows, cols, data, config, F, E, H, qvec, tvec "
-        "  FROM src.two_view_geometries "
-        "  WHERE pair_id % 2147483647 IN chosen AND pair_id / 2147483647 IN "
-        "chosen;"
+        "  SELECT g.pair_id, g.rows, g.cols, g.data, g.config, g.F, g.E, "
+        "g.H, g.qvec, g.tvec "
+        "  FROM chosen c JOIN src.two_view_geometries g "
+        "  ON g.pair_id >= c.image_id * " +
+        pair_base + " AND g.pair_id < (c.image_id + 1) * " + pair_base +
+        "  WHERE g.pair_id % " + pair_base +
+        " IN chosen;"
         "COMMIT;");
     db.Execute("DETACH DATABASE src; PRAGMA user_version = " +
                std::to_string(source_version) + ";");
