@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -56,16 +57,22 @@ std::string GroupContent(const TmrMapperStages::ClusterGroup& group) {
 
 }  // namespace
 
-void TmrMapperStages::PlanGroups(const MatchGraph& graph) {
+void TmrMapperStages::PlanGroups(const MatchGraph& graph, bool for_memory) {
   groups_.clear();
-  if (MergeMemoryMiB() <= budget_.mib) return;
   const int n = graph.NumImages();
+  const int max_images = o_.merge.max_group_images;
+  const bool over_budget = for_memory && MergeMemoryMiB() > budget_.mib;
+  if (!over_budget && (max_images <= 0 || n <= max_images)) return;
   // A group's clusters share their halos and one process: its peak is
-  // that of its images together.
+  // that of its images together; one of more images than max_images fits
+  // no budget (unless it is one cluster, a group alone).
   const auto group_cost = [&](const std::vector<int>& kernels) {
-    return MergePeakMiB(
-        LoadOfImages(graph, GroupImages({kernels, {}, 0, 0.0, {}, {}})),
-        o_.refinement.points_per_image, o_.refinement.max_block_images);
+    const std::vector<int> images = GroupImages({kernels, {}, 0, 0.0, {}, {}});
+    if (max_images > 0 && static_cast<int>(images.size()) > max_images)
+      return std::numeric_limits<double>::infinity();
+    return MergePeakMiB(LoadOfImages(graph, images),
+                        o_.refinement.points_per_image,
+                        o_.refinement.max_block_images);
   };
   std::vector<int> cluster_of(n, -1);
   std::vector<double> cost;

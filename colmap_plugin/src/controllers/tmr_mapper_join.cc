@@ -47,6 +47,7 @@ struct TmrMapperStages::JoinEntry {
 struct TmrMapperStages::JoinJob {
   int g = 0;
   int h = -1;
+  std::vector<int> images;  // the seam's (tree indices)
 };
 
 bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
@@ -59,17 +60,14 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   const std::vector<uint32_t> seam_ids = ImageIdsOf(tree_, seam_images_);
   const std::unordered_set<colmap::image_t> seams(seam_ids.begin(),
                                                   seam_ids.end());
-  const std::vector<std::pair<int, int>> links = LinkedGroupPairs();
-  std::vector<std::vector<int>> linked(groups_.size());
-  for (const auto& [g, h] : links) {
-    linked[g].push_back(h);
-    linked[h].push_back(g);
-  }
+  std::vector<JoinJob> jobs;
+  for (const auto& [g, h] : LinkedGroupPairs())
+    jobs.push_back({g, h, LinkSeamImages(g, h)});
+  const size_t num_links = jobs.size();
   // Light copies of every group's models, one group's models at a time:
   // on each link's seam, and on all the group's seams when its merge left
   // several models (whose alignment is then a job of its own).
   std::vector<JoinEntry> entries;
-  std::vector<JoinJob> jobs;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     if (!GroupMerged(g)) {
       return Fail("group " + std::to_string(g) +
@@ -85,12 +83,14 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
     std::vector<std::pair<int, std::unordered_set<colmap::image_t>>> copies;
     if (num_models > 1) {
       copies.emplace_back(-1, seams);
-      jobs.push_back({g, -1});
+      jobs.push_back({g, -1, GroupSeamImages(g)});
     }
-    for (const int h : linked[g]) {
-      const std::vector<uint32_t> ids = ImageIdsOf(tree_, LinkSeamImages(g, h));
+    for (size_t j = 0; j < num_links; ++j) {
+      if (jobs[j].g != g && jobs[j].h != g) continue;
+      const std::vector<uint32_t> ids = ImageIdsOf(tree_, jobs[j].images);
       copies.emplace_back(
-          h, std::unordered_set<colmap::image_t>(ids.begin(), ids.end()));
+          jobs[j].g == g ? jobs[j].h : jobs[j].g,
+          std::unordered_set<colmap::image_t>(ids.begin(), ids.end()));
     }
     for (int m = 0; m < num_models; ++m) {
       const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
@@ -131,7 +131,6 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
           std::to_string(entries.size()) + " models, " +
               std::to_string(seam_ids.size()) +
               " images on the seams (in several groups, or matched across)"});
-  for (const auto& [g, h] : links) jobs.push_back({g, h});
   std::vector<ModelPairAlignment> aligned;
   if (!RunJoinJobs(jobs, entries, num_threads, record, progress, &aligned,
                    error))
@@ -219,7 +218,7 @@ bool TmrMapperStages::RunJoinJobs(const std::vector<JoinJob>& jobs,
   for (size_t j = 0; j < jobs.size(); ++j) {
     TaskGraph::Task task;
     task.name = "join job " + std::to_string(j);
-    task.cost = 1.0;
+    task.cost = static_cast<double>(jobs[j].images.size());
     task.memory = job_mib;
     task.run = [&, j](int threads) {
       if (!AlignJoinJob(jobs[j], static_cast<int>(j), entries, threads, record,
@@ -246,8 +245,7 @@ bool TmrMapperStages::AlignJoinJob(const JoinJob& job, int number,
                                    std::string* error) const {
   const auto start = Clock::now();
   const int g = job.g, h = job.h;
-  const std::vector<int> images =
-      h < 0 ? GroupSeamImages(g) : LinkSeamImages(g, h);
+  const std::vector<int>& images = job.images;
   if (images.size() < 2) return true;
   const std::string database = work_.JoinDatabase(number);
   const auto cache = LoadTaskDatabaseCache(
@@ -267,8 +265,9 @@ bool TmrMapperStages::AlignJoinJob(const JoinJob& job, int number,
     number_of.push_back(e);
     group_of.push_back(group);
     light.push_back(std::make_unique<colmap::Reconstruction>());
-    light.back()->ReadBinary(work_.GroupLightCopy(
-        group, h < 0 ? -1 : g + h - group, entries[e].index));
+    const int other = h < 0 ? -1 : (group == g ? h : g);
+    light.back()->ReadBinary(
+        work_.GroupLightCopy(group, other, entries[e].index));
     models.push_back(light.back().get());
   }
   const SceneAssembler assembler(AssemblyOptions(o_, num_threads), cache,

@@ -59,8 +59,8 @@ void TmrMapperStages::EstimateMemory(const MatchGraph& graph,
     cluster_mib_.push_back(
         TaskPeakMiB(LoadOfImages(graph, node.cluster_images)));
   // A staged plan made with the default budget (maybe on a login node)
-  // does not split the merge: the merge job may get more memory.
-  if (one_process || o_.memory_budget > 0) PlanGroups(graph);
+  // does not split the merge for memory: the merge job may get more.
+  PlanGroups(graph, /*for_memory=*/one_process || o_.memory_budget > 0);
 }
 
 bool TmrMapperStages::ReadPlanMemory(std::string* error) {
@@ -128,10 +128,15 @@ bool TmrMapperStages::CheckMemory(bool one_process, const Progress& progress,
     if (groups_.empty()) {
       line += "merge stage " + GiBText(MergeMemoryMiB());
     } else {
-      line += "merge stage by parts (over the budget whole): " +
-              std::to_string(groups_.size()) + " groups of clusters up to " +
-              GiBText(LargestGroupMiB()) + ", their join " +
-              GiBText(MergeMemoryMiB());
+      const bool capped =
+          o_.merge.max_group_images > 0 &&
+          static_cast<int>(tree_.image_ids.size()) > o_.merge.max_group_images;
+      line +=
+          std::string("merge stage by parts (") +
+          (capped ? "--Tmr.merge_max_group_images" : "over the budget whole") +
+          "): " + std::to_string(groups_.size()) +
+          " groups of clusters up to " + GiBText(LargestGroupMiB()) +
+          ", their join " + GiBText(MergeMemoryMiB());
     }
     progress(line);
   }

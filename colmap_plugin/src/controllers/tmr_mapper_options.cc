@@ -98,6 +98,10 @@ void TmrMergeOptions::AddTo(OptionTable* t) {
          "align all cluster models at once (similarity averaging)");
   t->Add("Tmr.complete_models", &complete_models,
          "finally register images no model holds");
+  t->Add("Tmr.merge_max_group_images", &max_group_images,
+         "merge by parts in groups of at most this many photos (0: only "
+         "when the memory budget needs it)")
+      .AtLeast(0);
 }
 
 void TmrRefinementOptions::AddTo(OptionTable* t) {
@@ -209,8 +213,8 @@ SceneAssemblyOptions AssemblyOptions(const TmrMapperOptions& options,
   o.align_all_at_once = options.merge.align_all_at_once;
   o.complete_models = options.merge.complete_models;
   o.refinement_growth = options.refinement.growth;
-  o.parallel_block_images =
-      static_cast<size_t>(std::max(0, options.refinement.parallel_block_images));
+  o.parallel_block_images = static_cast<size_t>(
+      std::max(0, options.refinement.parallel_block_images));
   o.num_threads = num_threads;
   return o;
 }

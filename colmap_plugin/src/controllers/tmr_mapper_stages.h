@@ -189,11 +189,13 @@ class TmrMapperStages {
   // task its kernel's, then its leaf cluster's and its halo.
   std::vector<int> TaskImages(const TmrMapperTask& task) const;
   // Fills the expected memory of every step (controllers/memory_budget.h),
-  // and the cluster groups when the merge stage exceeds the budget (a
-  // staged plan only with options.memory_budget given).
+  // and the cluster groups (PlanGroups; for memory in a staged plan only
+  // with options.memory_budget given).
   void EstimateMemory(const MatchGraph& graph, bool one_process);
-  // The cluster groups (GroupClusters) and their memory, and the join's.
-  void PlanGroups(const MatchGraph& graph);
+  // The cluster groups (GroupClusters) and their memory, and the join's:
+  // when the scene has more photos than merge.max_group_images, or when
+  // `for_memory` and its merge is expected to need more than the budget.
+  void PlanGroups(const MatchGraph& graph, bool for_memory);
   // A group's images (tree indices, sorted).
   std::vector<int> GroupImages(const ClusterGroup& group) const;
   // Per image (tree index), the groups that hold it.

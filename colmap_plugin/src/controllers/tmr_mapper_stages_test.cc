@@ -86,5 +86,54 @@ TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
   fs::remove_all(dir);
 }
 
+// A cap on a group's photos splits a merge stage that fits the budget,
+// into groups of at most that many photos of clusters and halos; without
+// it, the same plan has no groups.
+TEST(TmrMapperStages, MaxGroupImagesSplitsAMergeThatFitsTheBudget) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("tmr_group_cap_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  FLAGS_minloglevel = google::GLOG_WARNING;
+  SyntheticSceneOptions scene;
+  scene.family = "plazas";
+  scene.num_places = 4;
+  scene.cameras_per_place = 40;
+  scene.num_unlinked_places = 0;
+  std::string error;
+  ASSERT_TRUE(WriteSyntheticScene(scene, (dir / "database.db").string(),
+                                  (dir / "gt").string(), nullptr, &error))
+      << error;
+  for (const int max_images : {0, 90}) {
+    TmrMapperOptions options;
+    options.database_path = (dir / "database.db").string();
+    options.output_path = (dir / ("out" + std::to_string(max_images))).string();
+    options.num_threads = 1;
+    options.memory_budget = 8.0;  // the whole merge fits
+    options.merge.max_group_images = max_images;
+    TmrMapperStages stages(options);
+    TmrMapperReport report;
+    ASSERT_TRUE(stages.Plan(&report, /*one_process=*/false, nullptr, &error))
+        << error;
+    ASSERT_LT(stages.MergeMemoryMiB(), 8.0 * 1024);
+    const auto& groups = stages.cluster_groups();
+    if (max_images == 0) {
+      EXPECT_TRUE(groups.empty());
+      continue;
+    }
+    ASSERT_GE(groups.size(), 2u);
+    size_t num_kernels = 0;
+    for (const auto& group : groups) {
+      num_kernels += group.kernels.size();
+      if (group.kernels.size() > 1) {
+        EXPECT_LE(
+            group.num_images - static_cast<int>(group.extra_images.size()),
+            max_images);
+      }
+    }
+    EXPECT_EQ(num_kernels, stages.tree().kernels.size());
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tmr

@@ -97,6 +97,12 @@ struct TmrMergeOptions {
   // Finally let COLMAP's mapper continue every model with the images no
   // model holds yet, and map what is still left from scratch.
   bool complete_models = true;  // --Tmr.complete_models
+  // A scene of more photos is merged by parts (docs/distributed.md) in
+  // groups of clusters of at most about this many photos (a cluster larger
+  // alone, halos and unclustered photos added), even where the whole merge
+  // fits the memory budget: a group's adjustments cost more per photo the
+  // larger it is. 0: by parts only when the budget needs it.
+  int max_group_images = 0;  // --Tmr.merge_max_group_images
 
   // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
   void AddTo(OptionTable* table);
