@@ -219,7 +219,6 @@ bool TmrMapperStages::RunJoinJobs(const std::vector<JoinJob>& jobs,
     TaskGraph::Task task;
     task.name = "join job " + std::to_string(j);
     task.cost = static_cast<double>(jobs[j].images.size());
-    task.memory = job_mib;
     task.run = [&, j](int threads) {
       if (!AlignJoinJob(jobs[j], static_cast<int>(j), entries, threads, record,
                         &results[j], &errors[j]) &&
@@ -229,7 +228,7 @@ bool TmrMapperStages::RunJoinJobs(const std::vector<JoinJob>& jobs,
     };
     graph.Add(std::move(task));
   }
-  graph.Run(side_by_side, budget_mib);
+  graph.Run(side_by_side);
   for (size_t j = 0; j < jobs.size(); ++j) {
     if (!errors[j].empty()) return Fail(errors[j], error);
     aligned->insert(aligned->end(), std::make_move_iterator(results[j].begin()),

@@ -23,23 +23,32 @@ bool Registers(const std::string& model_path, uint32_t image_id) {
   return model.ExistsImage(image_id) && model.Image(image_id).HasPose();
 }
 
-// Two overlapping plazas: each image cluster's leaf tasks register its
-// halo (images of the other cluster), and the other cluster's own tasks
-// register those images too, so the two cluster models share cameras.
-TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
+// A fresh folder `name` (per process) holding database.db and gt of
+// `num_places` overlapping plazas of 40 photos.
+fs::path WritePlazas(const std::string& name, int num_places) {
   const fs::path dir =
-      fs::temp_directory_path() / ("tmr_halo_" + std::to_string(getpid()));
+      fs::temp_directory_path() / (name + "_" + std::to_string(getpid()));
   fs::remove_all(dir);
   FLAGS_minloglevel = google::GLOG_WARNING;  // COLMAP's log of every step
   SyntheticSceneOptions scene;
   scene.family = "plazas";
-  scene.num_places = 2;
+  scene.num_places = num_places;
   scene.cameras_per_place = 40;
   scene.num_unlinked_places = 0;
   std::string error;
-  ASSERT_TRUE(WriteSyntheticScene(scene, (dir / "database.db").string(),
+  EXPECT_TRUE(WriteSyntheticScene(scene, (dir / "database.db").string(),
                                   (dir / "gt").string(), nullptr, &error))
       << error;
+  return dir;
+}
+
+// Two overlapping plazas: each image cluster's leaf tasks register its
+// halo (images of the other cluster), and the other cluster's own tasks
+// register those images too, so the two cluster models share cameras.
+TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
+  const fs::path dir = WritePlazas("tmr_halo", 2);
+  ASSERT_TRUE(fs::exists(dir / "database.db"));
+  std::string error;
   TmrMapperOptions options;
   options.database_path = (dir / "database.db").string();
   options.output_path = (dir / "out").string();
@@ -90,19 +99,9 @@ TEST(TmrMapperStages, AHaloIsRegisteredByBothClustersTasks) {
 // into groups of at most that many photos of clusters and halos; without
 // it, the same plan has no groups.
 TEST(TmrMapperStages, MaxGroupImagesSplitsAMergeThatFitsTheBudget) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("tmr_group_cap_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  FLAGS_minloglevel = google::GLOG_WARNING;
-  SyntheticSceneOptions scene;
-  scene.family = "plazas";
-  scene.num_places = 4;
-  scene.cameras_per_place = 40;
-  scene.num_unlinked_places = 0;
+  const fs::path dir = WritePlazas("tmr_group_cap", 4);
+  ASSERT_TRUE(fs::exists(dir / "database.db"));
   std::string error;
-  ASSERT_TRUE(WriteSyntheticScene(scene, (dir / "database.db").string(),
-                                  (dir / "gt").string(), nullptr, &error))
-      << error;
   for (const int max_images : {0, 90}) {
     TmrMapperOptions options;
     options.database_path = (dir / "database.db").string();
