@@ -68,6 +68,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   // on each link's seam, and on all the group's seams when its merge left
   // several models (whose alignment is then a job of its own).
   std::vector<JoinEntry> entries;
+  colmap::ThreadPool pool(std::max(1, num_threads));  // a model's copies
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     if (!GroupMerged(g)) {
       return Fail("group " + std::to_string(g) +
@@ -96,7 +97,6 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
       const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
       colmap::Reconstruction model;
       model.ReadBinary(path.string());
-      colmap::ThreadPool pool(std::max(1, num_threads));
       std::vector<std::shared_future<void>> written;
       for (const auto& copy : copies) {
         written.push_back(pool.AddTask([&, m] {
@@ -140,9 +140,10 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   std::vector<JoinedScene> joined;
   std::vector<TmrWeakLink> weak_links;
   {
+    // Placing reads no correspondences: no cache, no database.
     const SceneAssembler placer(AssemblyOptions(o_, num_threads),
                                 std::make_shared<colmap::DatabaseCache>(),
-                                work_.JoinDatabase(0), tree_.image_names,
+                                /*merge_database=*/"", tree_.image_names,
                                 record);
     joined = placer.PlaceJoin(models, std::move(aligned), &weak_links);
   }
