@@ -25,6 +25,10 @@ constexpr double kCachePerMatchedKeypoint = 200.0;
 constexpr double kModelsPerMatchedKeypoint = 150.0;
 // The adjustment on the longest tracks: per image and track.
 constexpr double kLongestTracksPerImageTrack = 1360.0;
+// The join's adjustment on its groups' longest tracks, per image and track:
+// the scene built from the groups' compact models beside them (city10 at
+// 232 tracks per image: peak 4,120 MiB).
+constexpr double kJoinAdjustmentPerImageTrack = 1850.0;
 // A block adjustment with all points: per matched keypoint of the block.
 constexpr double kBlockPerMatchedKeypoint = 790.0;
 
@@ -58,8 +62,8 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   const double held =
       kProcessMiB + CorrespondencesMiB(scene) +
       kModelsPerMatchedKeypoint * scene.matched_keypoints / kMiB;
-  const double longest = kLongestTracksPerImageTrack * scene.images *
-                         longest_tracks_per_image / kMiB;
+  const double longest =
+      LongestTracksMiB(scene.images, longest_tracks_per_image);
   const double block_share =
       max_block_images > 0 && scene.images > max_block_images
           ? static_cast<double>(max_block_images) / scene.images
@@ -69,14 +73,29 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
   return held + std::max(longest, block);
 }
 
-double JoinPeakMiB(const MemoryLoad& largest_group,
-                   const MemoryLoad& job_seams) {
+double LongestTracksMiB(int64_t images, int tracks_per_image) {
+  return kLongestTracksPerImageTrack * images * tracks_per_image / kMiB;
+}
+
+double JoinAdjustmentMiB(int64_t images, int tracks_per_image) {
+  return kJoinAdjustmentPerImageTrack * images * tracks_per_image / kMiB;
+}
+
+int JoinTracksThatFit(int wanted, double budget_mib, int64_t images) {
+  if (images <= 0) return wanted;
+  const double fit = (budget_mib - kProcessMiB) * kMiB /
+                     (kJoinAdjustmentPerImageTrack * images);
+  return std::max(0, std::min(wanted, static_cast<int>(fit)));
+}
+
+double JoinPeakMiB(const MemoryLoad& largest_group, const MemoryLoad& job_seams,
+                   double adjustment_mib) {
   const double group =
       kModelsPerMatchedKeypoint * largest_group.matched_keypoints / kMiB;
   const double job =
       kModelsPerMatchedKeypoint * job_seams.matched_keypoints / kMiB +
       CorrespondencesMiB(job_seams);
-  return kProcessMiB + std::max(job, group);
+  return kProcessMiB + std::max({job, group, adjustment_mib});
 }
 
 double JoinJobMiB(double join_mib) {

@@ -37,13 +37,23 @@ double CorrespondencesMiB(const MemoryLoad& scene);
 // `max_block_images` images (0: the whole scene) with all their points.
 double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
                     int max_block_images);
+// The adjustment of every pose of `images` images on `tracks_per_image`
+// longest tracks each (AdjustOnLongestTracks).
+double LongestTracksMiB(int64_t images, int tracks_per_image);
+// The same by the join of a merge by parts (JoinAdjustment), which builds
+// its scene from the groups' compact models.
+double JoinAdjustmentMiB(int64_t images, int tracks_per_image);
+// `wanted` tracks per image, or fewer so that the join's adjustment of
+// `images` images fits `budget_mib` (0 when none fits).
+int JoinTracksThatFit(int wanted, double budget_mib, int64_t images);
 // The join of a merge stage by parts (docs/distributed.md), one step at a
 // time: one group's models (`largest_group`'s load), read to make their
-// light copies or to write the scenes; or one alignment job, the light
+// light copies or to write the scenes; one alignment job, the light
 // copies of a group's or two linked groups' models beside the
-// correspondences of their seam (`job_seams`, the largest job's load).
-double JoinPeakMiB(const MemoryLoad& largest_group,
-                   const MemoryLoad& job_seams);
+// correspondences of their seam (`job_seams`, the largest job's load); or
+// the adjustment of the joined scene (`adjustment_mib`).
+double JoinPeakMiB(const MemoryLoad& largest_group, const MemoryLoad& job_seams,
+                   double adjustment_mib);
 // What each of the join's alignment jobs may hold beside the others, from
 // the join's expected peak (JoinPeakMiB): the jobs run side by side while
 // their sum fits the budget less ProcessMiB().

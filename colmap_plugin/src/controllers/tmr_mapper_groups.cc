@@ -139,7 +139,8 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph, bool for_memory) {
     job(GroupSeamImages(g));
     for (const int h : groups_[g].links) job(LinkSeamImages(g, h));
   }
-  memory_mib_["merge"] = JoinPeakMiB(largest, largest_job);
+  memory_mib_["merge"] = JoinPeakMiB(
+      largest, largest_job, JoinAdjustmentMiB(n, JoinPointsPerImage()));
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {
@@ -222,6 +223,7 @@ bool TmrMapperStages::ReadGroupPlanLine(const std::string& id, int images,
 std::string TmrMapperStages::GroupRecord(int g) const {
   const ClusterGroup& group = groups_.at(g);
   TmrMapperOptions options = o_;
+  options.merge.adjust_join = false;  // the join's, not the group's
   OptionTable table;
   options.AddTo(&table);
   std::string results;

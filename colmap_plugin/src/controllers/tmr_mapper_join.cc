@@ -3,7 +3,8 @@
 // light copies of the groups' models on their seams (MakeSeamModel), the
 // models of each linked pair of groups (and of a group its merge left in
 // several) aligned on their seam's correspondences, side by side within
-// the budget, one similarity averaging, then each scene written piece by
+// the budget, one similarity averaging, each scene's poses adjusted on the
+// groups' longest tracks (JoinAdjustment), then each scene written piece by
 // piece (ModelWriter), so that no step holds every group's models or
 // seams.
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "controllers/tmr_mapper_stages.h"
 #include "io/model_writer.h"
 #include "io/task_database.h"
+#include "merge/join_adjustment.h"
 #include "merge/scene_assembly.h"
 #include "sfm/model_edits.h"
 #include "tmr/util/process.h"
@@ -40,6 +42,7 @@ struct TmrMapperStages::JoinEntry {
   int index = 0;     // its number in its group's folder
   std::string path;  // the whole model
   JoinModel model;
+  CompactTrackModel tracks;  // for the join's adjustment
 };
 
 // One alignment job of the join: group g's own models on all its seams
@@ -68,6 +71,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   // on each link's seam, and on all the group's seams when its merge left
   // several models (whose alignment is then a job of its own).
   std::vector<JoinEntry> entries;
+  const int points_per_image = JoinPointsPerImage();
   colmap::ThreadPool pool(std::max(1, num_threads));  // a model's copies
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     if (!GroupMerged(g)) {
@@ -97,7 +101,13 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
       const fs::path path = fs::path(work_.GroupModels(g)) / std::to_string(m);
       colmap::Reconstruction model;
       model.ReadBinary(path.string());
+      JoinEntry entry{g, m, path.string(), {}, {}};
       std::vector<std::shared_future<void>> written;
+      if (points_per_image > 0) {
+        written.push_back(pool.AddTask([&] {
+          entry.tracks = MakeCompactTrackModel(model, points_per_image);
+        }));
+      }
       for (const auto& copy : copies) {
         written.push_back(pool.AddTask([&, m] {
           colmap::Reconstruction light;
@@ -110,7 +120,6 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
       }
       for (const std::shared_future<void>& copy : written)
         copy.get();  // rethrows
-      JoinEntry entry{g, m, path.string(), {}};
       entry.model.num_images = model.NumRegImages();
       for (const colmap::image_t id : model.RegImageIds()) {
         if (seams.count(id))
@@ -152,6 +161,30 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   const auto write_start = Clock::now();
   int num_registered = 0;
   for (size_t s = 0; s < joined.size(); ++s) {
+    JoinAdjustment adjustment;
+    const bool adjusted = points_per_image > 0 && joined[s].pieces.size() > 1;
+    if (adjusted) {
+      const auto adjust_start = Clock::now();
+      for (const JoinPiece& piece : joined[s].pieces) {
+        adjustment.AddPiece(entries.at(piece.model).tracks,
+                            piece.scene_from_model, piece.dropped_images);
+        entries.at(piece.model).tracks = {};
+      }
+      if (progress) {
+        progress("join: adjusting model " + std::to_string(s) + " (" +
+                 std::to_string(joined[s].num_images) + " images) on " +
+                 std::to_string(points_per_image) +
+                 " longest tracks per image");
+      }
+      const std::string report = adjustment.Adjust(
+          ColmapOptions(o_, num_threads).GlobalBundleAdjustment());
+      const int num_images = static_cast<int>(joined[s].num_images);
+      record(
+          {"join: adjust model " + std::to_string(s) + " on " +
+               std::to_string(points_per_image) + " longest tracks per image",
+           num_images, num_images, SecondsSince(adjust_start), true, report});
+      ReleaseFreedMemory();
+    }
     const std::string path =
         (fs::path(o_.output_path) / std::to_string(s)).string();
     ModelWriter writer(path);
@@ -163,6 +196,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
       for (const colmap::image_t id : piece.dropped_images)
         model.DeRegisterFrame(model.Image(id).FrameId());
       model.Transform(piece.scene_from_model);
+      if (adjusted) adjustment.MoveToAdjustedPoses(&model, num_threads);
       if (!o_.image_path.empty())
         model.ExtractColorsForAllImages(o_.image_path);
       written = writer.Append(&model);
@@ -181,6 +215,12 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   }
   FinishScenes(joined.size(), std::move(weak_links), progress, report);
   return true;
+}
+
+int TmrMapperStages::JoinPointsPerImage() const {
+  if (!o_.merge.adjust_join) return 0;
+  return JoinTracksThatFit(o_.refinement.points_per_image, budget_.mib,
+                           static_cast<int64_t>(tree_.image_ids.size()));
 }
 
 std::vector<std::pair<int, int>> TmrMapperStages::LinkedGroupPairs() const {

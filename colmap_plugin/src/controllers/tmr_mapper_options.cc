@@ -102,6 +102,9 @@ void TmrMergeOptions::AddTo(OptionTable* t) {
          "merge by parts in groups of at most this many photos (0: only "
          "when the memory budget needs it)")
       .AtLeast(0);
+  t->Add("Tmr.merge_adjust_join", &adjust_join,
+         "merge by parts: adjust every pose of the joined scene on the "
+         "groups' longest tracks");
 }
 
 void TmrRefinementOptions::AddTo(OptionTable* t) {

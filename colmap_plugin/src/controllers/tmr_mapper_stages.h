@@ -249,6 +249,10 @@ class TmrMapperStages {
   // join's numbering of `entries`.
   struct JoinEntry;
   struct JoinJob;
+  // The longest tracks per image of the join's adjustment
+  // (refinement.points_per_image, fewer where the budget needs; 0 without
+  // merge.adjust_join).
+  int JoinPointsPerImage() const;
   std::vector<std::pair<int, int>> LinkedGroupPairs() const;
   bool RunJoinJobs(const std::vector<JoinJob>& jobs,
                    const std::vector<JoinEntry>& entries, int num_threads,

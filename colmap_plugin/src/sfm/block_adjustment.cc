@@ -211,8 +211,8 @@ std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
          ": " + summary->BriefReport();
 }
 
-colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
-                                            size_t points_per_image) {
+std::vector<colmap::point3D_t> LongestTrackPoints(
+    const colmap::Reconstruction& model, size_t points_per_image) {
   std::unordered_set<colmap::point3D_t> kept;
   std::vector<std::pair<size_t, colmap::point3D_t>> by_length;
   for (const colmap::image_t id : model.RegImageIds()) {
@@ -228,12 +228,18 @@ colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
                       std::greater<>());
     for (size_t i = 0; i < n; ++i) kept.insert(by_length[i].second);
   }
+  std::vector<colmap::point3D_t> ids(kept.begin(), kept.end());
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
+                                            size_t points_per_image) {
   colmap::Reconstruction reduced;
   for (const colmap::image_t id : model.RegImageIds())
     AddImageWithoutPoints(model, id, model.Image(id).CamFromWorld(), &reduced);
-  std::vector<colmap::point3D_t> ids(kept.begin(), kept.end());
-  std::sort(ids.begin(), ids.end());
-  CopyPointsWithTracks(model, ids, &reduced);
+  CopyPointsWithTracks(model, LongestTrackPoints(model, points_per_image),
+                       &reduced);
   return reduced;
 }
 

@@ -67,9 +67,13 @@ struct BlockAdjustmentTotals {
 std::string AdjustWholeModel(const colmap::BundleAdjustmentOptions& options,
                              colmap::Reconstruction* model);
 
-// The registered images of `model` with only the points that are among the
-// points_per_image longest tracks of some image (ids kept): the points
-// that tie a large model together.
+// The points of `model` that are among the points_per_image longest tracks
+// of some registered image, sorted.
+std::vector<colmap::point3D_t> LongestTrackPoints(
+    const colmap::Reconstruction& model, size_t points_per_image);
+
+// The registered images of `model` with only its LongestTrackPoints (ids
+// kept): the points that tie a large model together.
 colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
                                             size_t points_per_image);
 

@@ -103,6 +103,14 @@ struct TmrMergeOptions {
   // fits the memory budget: a group's adjustments cost more per photo the
   // larger it is. 0: by parts only when the budget needs it.
   int max_group_images = 0;  // --Tmr.merge_max_group_images
+  // The join of a merge by parts adjusts every pose of each joined scene
+  // together on the groups' longest tracks (JoinAdjustment; as many per
+  // image as the whole stage's first adjustment,
+  // merge_refine_points_per_image, or fewer where the memory budget
+  // needs): the groups' own adjustments do not see across their seams, and
+  // their similarities move each group as a rigid block. false: placed by
+  // similarities only.
+  bool adjust_join = true;  // --Tmr.merge_adjust_join
 
   // Lists the options as --Tmr.* rows (tmr/util/option_table.h).
   void AddTo(OptionTable* table);
