@@ -25,10 +25,12 @@ constexpr double kCachePerMatchedKeypoint = 200.0;
 constexpr double kModelsPerMatchedKeypoint = 150.0;
 // The adjustment on the longest tracks: per image and track.
 constexpr double kLongestTracksPerImageTrack = 1360.0;
-// The join's adjustment on its groups' longest tracks, per image and track:
-// the scene built from the groups' compact models beside them (city10 at
-// 232 tracks per image: peak 4,120 MiB).
-constexpr double kJoinAdjustmentPerImageTrack = 1850.0;
+// The join's adjustment on its groups' longest tracks: per image and track
+// of the scene, beside what one group's models left in the process, per
+// photo of the largest group (city10, 14 groups of up to 1,021 photos: peak
+// 3,319 MiB at 170 tracks per image, 4,120 MiB at 232).
+constexpr double kJoinAdjustmentPerImageTrack = 1560.0;
+constexpr double kJoinGroupMiBPerImage = 0.75;
 // A block adjustment with all points: per matched keypoint of the block.
 constexpr double kBlockPerMatchedKeypoint = 790.0;
 
@@ -77,14 +79,19 @@ double LongestTracksMiB(int64_t images, int tracks_per_image) {
   return kLongestTracksPerImageTrack * images * tracks_per_image / kMiB;
 }
 
-double JoinAdjustmentMiB(int64_t images, int tracks_per_image) {
-  return kJoinAdjustmentPerImageTrack * images * tracks_per_image / kMiB;
+double JoinAdjustmentMiB(int64_t images, int tracks_per_image,
+                         int64_t largest_group_images) {
+  if (tracks_per_image <= 0) return 0.0;
+  return kJoinAdjustmentPerImageTrack * images * tracks_per_image / kMiB +
+         kJoinGroupMiBPerImage * largest_group_images;
 }
 
-int JoinTracksThatFit(int wanted, double budget_mib, int64_t images) {
+int JoinTracksThatFit(int wanted, double budget_mib, int64_t images,
+                      int64_t largest_group_images) {
   if (images <= 0) return wanted;
-  const double fit = (budget_mib - kProcessMiB) * kMiB /
-                     (kJoinAdjustmentPerImageTrack * images);
+  const double fit = (budget_mib - kProcessMiB -
+                      kJoinGroupMiBPerImage * largest_group_images) *
+                     kMiB / (kJoinAdjustmentPerImageTrack * images);
   return std::max(0, std::min(wanted, static_cast<int>(fit)));
 }
 

@@ -41,11 +41,14 @@ double MergePeakMiB(const MemoryLoad& scene, int longest_tracks_per_image,
 // longest tracks each (AdjustOnLongestTracks).
 double LongestTracksMiB(int64_t images, int tracks_per_image);
 // The same by the join of a merge by parts (JoinAdjustment), which builds
-// its scene from the groups' compact models.
-double JoinAdjustmentMiB(int64_t images, int tracks_per_image);
+// its scene from the groups' compact models after holding the largest
+// group's models (0 without tracks).
+double JoinAdjustmentMiB(int64_t images, int tracks_per_image,
+                         int64_t largest_group_images);
 // `wanted` tracks per image, or fewer so that the join's adjustment of
 // `images` images fits `budget_mib` (0 when none fits).
-int JoinTracksThatFit(int wanted, double budget_mib, int64_t images);
+int JoinTracksThatFit(int wanted, double budget_mib, int64_t images,
+                      int64_t largest_group_images);
 // The join of a merge stage by parts (docs/distributed.md), one step at a
 // time: one group's models (`largest_group`'s load), read to make their
 // light copies or to write the scenes; one alignment job, the light

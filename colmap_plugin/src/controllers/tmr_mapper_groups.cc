@@ -140,7 +140,8 @@ void TmrMapperStages::PlanGroups(const MatchGraph& graph, bool for_memory) {
     for (const int h : groups_[g].links) job(LinkSeamImages(g, h));
   }
   memory_mib_["merge"] = JoinPeakMiB(
-      largest, largest_job, JoinAdjustmentMiB(n, JoinPointsPerImage()));
+      largest, largest_job,
+      JoinAdjustmentMiB(n, JoinPointsPerImage(), LargestGroupImages()));
 }
 
 std::vector<int> TmrMapperStages::GroupImages(const ClusterGroup& group) const {

@@ -159,6 +159,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   ReleaseFreedMemory();
   // Each scene made again from the whole models, one at a time.
   const auto write_start = Clock::now();
+  double adjust_seconds = 0;  // of the scenes' adjustments, between writes
   int num_registered = 0;
   for (size_t s = 0; s < joined.size(); ++s) {
     JoinAdjustment adjustment;
@@ -183,6 +184,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
           {"join: adjust model " + std::to_string(s) + " on " +
                std::to_string(points_per_image) + " longest tracks per image",
            num_images, num_images, SecondsSince(adjust_start), true, report});
+      adjust_seconds += SecondsSince(adjust_start);
       ReleaseFreedMemory();
     }
     const std::string path =
@@ -208,7 +210,8 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   }
   record({"join: write " + std::to_string(joined.size()) +
               " models, one group's model at a time",
-          n, num_registered, SecondsSince(write_start), true, ""});
+          n, num_registered, SecondsSince(write_start) - adjust_seconds, true,
+          ""});
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     std::error_code ec;
     fs::remove_all(work_.GroupSeamModels(g), ec);
@@ -220,7 +223,8 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
 int TmrMapperStages::JoinPointsPerImage() const {
   if (!o_.merge.adjust_join) return 0;
   return JoinTracksThatFit(o_.refinement.points_per_image, budget_.mib,
-                           static_cast<int64_t>(tree_.image_ids.size()));
+                           static_cast<int64_t>(tree_.image_ids.size()),
+                           LargestGroupImages());
 }
 
 std::vector<std::pair<int, int>> TmrMapperStages::LinkedGroupPairs() const {

@@ -27,6 +27,13 @@ double TmrMapperStages::LargestGroupMiB() const {
   return mib;
 }
 
+int TmrMapperStages::LargestGroupImages() const {
+  int images = 0;
+  for (const ClusterGroup& group : groups_)
+    images = std::max(images, group.num_images);
+  return images;
+}
+
 double TmrMapperStages::MergeMemoryMiB() const {
   const auto it = memory_mib_.find("merge");
   return it == memory_mib_.end() ? 0.0 : it->second;

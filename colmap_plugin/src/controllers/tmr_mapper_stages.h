@@ -81,8 +81,9 @@ class TmrMapperStages {
   // whole merge stage is expected to need more than the budget; empty
   // when it fits.
   const std::vector<ClusterGroup>& cluster_groups() const { return groups_; }
-  // The largest group's expected peak (0 without groups).
+  // The largest group's expected peak, and its photos (0 without groups).
   double LargestGroupMiB() const;
+  int LargestGroupImages() const;
   // The first of `tasks` (Tasks()) that group g merges and that has not
   // finished; "" when the group is ready.
   std::string UnfinishedTaskOfGroup(

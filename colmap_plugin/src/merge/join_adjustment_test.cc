@@ -26,12 +26,8 @@ namespace fs = std::filesystem;
 class JoinAdjustmentTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    SyntheticSceneOptions options;
-    options.family = "city";
-    options.city_blocks_x = 2;
-    options.city_blocks_y = 1;
     std::string error;
-    dir_ = WriteTestScene("join_adjustment_test", options, &error);
+    dir_ = WriteTestScene("join_adjustment_test", TwoBlockCity(), &error);
     ASSERT_FALSE(dir_.empty()) << error;
     gt_ = new colmap::Reconstruction(ReadModel((dir_ / "gt").string()));
   }

@@ -32,12 +32,8 @@ namespace fs = std::filesystem;
 class BlockAdjustmentTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    SyntheticSceneOptions options;
-    options.family = "city";
-    options.city_blocks_x = 2;
-    options.city_blocks_y = 1;
     std::string error;
-    dir_ = WriteTestScene("block_adjustment_test", options, &error);
+    dir_ = WriteTestScene("block_adjustment_test", TwoBlockCity(), &error);
     ASSERT_FALSE(dir_.empty()) << error;
     cache_ = new std::shared_ptr<colmap::DatabaseCache>(
         LoadTestCache(dir_ / "database.db"));

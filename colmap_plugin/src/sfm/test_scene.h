@@ -18,6 +18,15 @@
 
 namespace tmr {
 
+// A tmr_synth city of two blocks side by side.
+inline SyntheticSceneOptions TwoBlockCity() {
+  SyntheticSceneOptions options;
+  options.family = "city";
+  options.city_blocks_x = 2;
+  options.city_blocks_y = 1;
+  return options;
+}
+
 // Writes the scene to a fresh folder named after `suite` and this process
 // (ctest runs the test cases of a suite as parallel processes: one folder
 // each): FOLDER/database.db and the ground truth in FOLDER/gt. Returns the
