@@ -32,8 +32,8 @@ CompactTrackModel MakeCompactTrackModel(const colmap::Reconstruction& model,
 // Bundle adjustment of a joined scene on its pieces' longest tracks, as the
 // whole merge stage's adjustment on its longest tracks
 // (AdjustOnLongestTracks) closes a scene's loops and fixes its large-scale
-// shape, which a join by similarities alone moves each group as a rigid
-// block. Pieces are added in the scene's frame; an image that several
+// shape, where a join by similarities alone moves each group as a rigid
+// block and leaves each group bent as its own adjustment left it. Pieces are added in the scene's frame; an image that several
 // pieces hold appears once, at its kept copy's pose, and the points of
 // different pieces that observe the same keypoint of an image become one
 // track (a track that would observe an image twice keeps the first
@@ -47,8 +47,8 @@ class JoinAdjustment {
   void AddPiece(const CompactTrackModel& piece,
                 const colmap::Sim3d& scene_from_piece,
                 const std::vector<colmap::image_t>& dropped);
-  // Adjusts every pose and point of the scene made from the pieces; returns
-  // a one-line report ("" with fewer than two images).
+  // Adjusts every pose and point of the scene made from the pieces (the
+  // first two poses fix the gauge); returns a one-line report.
   std::string Adjust(colmap::BundleAdjustmentOptions options);
   // Points of one piece joined to those of another.
   size_t NumJoinedPoints() const { return num_joined_points_; }
