@@ -46,7 +46,8 @@ double LongestTracksMiB(int64_t images, int tracks_per_image);
 double JoinAdjustmentMiB(int64_t images, int tracks_per_image,
                          int64_t largest_group_images);
 // `wanted` tracks per image, or fewer so that the join's adjustment of
-// `images` images fits `budget_mib` (0 when none fits).
+// `images` images fits `budget_mib`; 0 (no adjustment) when fewer than 150
+// fit, too few to help.
 int JoinTracksThatFit(int wanted, double budget_mib, int64_t images,
                       int64_t largest_group_images);
 // The join of a merge stage by parts (docs/distributed.md), one step at a

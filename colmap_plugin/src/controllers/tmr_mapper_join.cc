@@ -118,8 +118,9 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
           light.WriteBinary(light_path);
         }));
       }
-      for (const std::shared_future<void>& copy : written)
-        copy.get();  // rethrows
+      // All done before any rethrows: they use `model` and `entry`.
+      for (const std::shared_future<void>& copy : written) copy.wait();
+      for (const std::shared_future<void>& copy : written) copy.get();
       entry.model.num_images = model.NumRegImages();
       for (const colmap::image_t id : model.RegImageIds()) {
         if (seams.count(id))
@@ -156,6 +157,16 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
                                 record);
     joined = placer.PlaceJoin(models, std::move(aligned), &weak_links);
   }
+  // Compact models only for the scenes of several pieces, which are
+  // adjusted.
+  std::vector<bool> adjusted_piece(entries.size(), false);
+  for (const JoinedScene& scene : joined) {
+    if (scene.pieces.size() < 2) continue;
+    for (const JoinPiece& piece : scene.pieces)
+      adjusted_piece[piece.model] = true;
+  }
+  for (size_t e = 0; e < entries.size(); ++e)
+    if (!adjusted_piece[e]) entries[e].tracks = {};
   ReleaseFreedMemory();
   // Each scene made again from the whole models, one at a time.
   const auto write_start = Clock::now();

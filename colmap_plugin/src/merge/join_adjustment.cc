@@ -5,6 +5,7 @@
 #include <colmap/util/threading.h>
 
 #include <algorithm>
+#include <future>
 #include <unordered_set>
 
 #include "sfm/block_adjustment.h"
@@ -173,14 +174,16 @@ void JoinAdjustment::MoveToAdjustedPoses(colmap::Reconstruction* piece,
   const size_t workers = static_cast<size_t>(std::max(1, num_threads));
   const size_t chunk = (point_ids.size() + workers - 1) / workers;
   colmap::ThreadPool pool(static_cast<int>(workers));
+  std::vector<std::shared_future<void>> done;
   for (size_t begin = 0; begin < point_ids.size(); begin += chunk) {
     const size_t end = std::min(point_ids.size(), begin + chunk);
-    pool.AddTask([&, begin, end] {
+    done.push_back(pool.AddTask([&, begin, end] {
       for (size_t i = begin; i < end; ++i)
         RetriangulateIfBetter(piece, point_ids[i]);
-    });
+    }));
   }
-  pool.Wait();
+  for (const std::shared_future<void>& part : done) part.wait();
+  for (const std::shared_future<void>& part : done) part.get();  // rethrows
 }
 
 }  // namespace tmr

@@ -33,8 +33,9 @@ CompactTrackModel MakeCompactTrackModel(const colmap::Reconstruction& model,
 // whole merge stage's adjustment on its longest tracks
 // (AdjustOnLongestTracks) closes a scene's loops and fixes its large-scale
 // shape, where a join by similarities alone moves each group as a rigid
-// block and leaves each group bent as its own adjustment left it. Pieces are added in the scene's frame; an image that several
-// pieces hold appears once, at its kept copy's pose, and the points of
+// block and leaves each group bent as its own adjustment left it. Pieces
+// are added in the scene's frame; an image that several pieces hold
+// appears once, at its kept copy's pose, and the points of
 // different pieces that observe the same keypoint of an image become one
 // track (a track that would observe an image twice keeps the first
 // keypoint): the seams' tracks tie the groups together. Intrinsics are held

@@ -129,7 +129,7 @@ TEST_F(JoinAdjustmentTest, PiecesPlacedOffComeBackTogether) {
   colmap::Reconstruction reference = *gt_;
   whole.MoveToAdjustedPoses(&reference);
   const ModelEvaluation best = EvaluateReconstruction(*gt_, reference, {});
-  ASSERT_EQ(after.num_registered_images, static_cast<int>(ids.size()));
+  ASSERT_EQ(best.num_registered_images, static_cast<int>(ids.size()));
   EXPECT_GT(before.rotation_error_deg.median, 0.05);
   EXPECT_LT(after.rotation_error_deg.median,
             0.5 * before.rotation_error_deg.median);
