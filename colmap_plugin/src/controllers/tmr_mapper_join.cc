@@ -157,11 +157,13 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
                                 record);
     joined = placer.PlaceJoin(models, std::move(aligned), &weak_links);
   }
-  // Compact models only for the scenes of several pieces, which are
-  // adjusted.
+  // A scene of several pieces is adjusted; compact models only for those.
+  const auto adjusts = [&](const JoinedScene& scene) {
+    return points_per_image > 0 && scene.pieces.size() > 1;
+  };
   std::vector<bool> adjusted_piece(entries.size(), false);
   for (const JoinedScene& scene : joined) {
-    if (scene.pieces.size() < 2) continue;
+    if (!adjusts(scene)) continue;
     for (const JoinPiece& piece : scene.pieces)
       adjusted_piece[piece.model] = true;
   }
@@ -174,7 +176,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
   int num_registered = 0;
   for (size_t s = 0; s < joined.size(); ++s) {
     JoinAdjustment adjustment;
-    const bool adjusted = points_per_image > 0 && joined[s].pieces.size() > 1;
+    const bool adjusted = adjusts(joined[s]);
     if (adjusted) {
       const auto adjust_start = Clock::now();
       for (const JoinPiece& piece : joined[s].pieces) {

@@ -2,10 +2,8 @@
 #include "merge/join_adjustment.h"
 
 #include <colmap/geometry/pose.h>
-#include <colmap/util/threading.h>
 
 #include <algorithm>
-#include <future>
 #include <unordered_set>
 
 #include "sfm/block_adjustment.h"
@@ -151,39 +149,11 @@ std::string JoinAdjustment::Adjust(colmap::BundleAdjustmentOptions options) {
 
 void JoinAdjustment::MoveToAdjustedPoses(colmap::Reconstruction* piece,
                                          int num_threads) const {
-  std::unordered_map<colmap::image_t, colmap::Rigid3d> placed;
-  for (const colmap::image_t id : piece->RegImageIds())
-    placed[id] = piece->Image(id).CamFromWorld();
   std::vector<colmap::point3D_t> point_ids;
   point_ids.reserve(piece->NumPoints3D());
   for (const auto& [point_id, point] : piece->Points3D())
     point_ids.push_back(point_id);
-  for (const colmap::point3D_t point_id : point_ids) {
-    colmap::Point3D& point = piece->Point3D(point_id);
-    const colmap::image_t id = point.track.Element(0).image_id;
-    const auto adjusted = adjusted_.find(id);
-    if (adjusted == adjusted_.end()) continue;
-    point.xyz = colmap::Inverse(adjusted->second) * (placed.at(id) * point.xyz);
-  }
-  for (const auto& [id, pose] : placed) {
-    const auto adjusted = adjusted_.find(id);
-    if (adjusted != adjusted_.end())
-      SetPoseAndRegister(id, adjusted->second, piece);
-  }
-  // Each point's triangulation reads the poses and writes only that point.
-  const size_t workers = static_cast<size_t>(std::max(1, num_threads));
-  const size_t chunk = (point_ids.size() + workers - 1) / workers;
-  colmap::ThreadPool pool(static_cast<int>(workers));
-  std::vector<std::shared_future<void>> done;
-  for (size_t begin = 0; begin < point_ids.size(); begin += chunk) {
-    const size_t end = std::min(point_ids.size(), begin + chunk);
-    done.push_back(pool.AddTask([&, begin, end] {
-      for (size_t i = begin; i < end; ++i)
-        RetriangulateIfBetter(piece, point_ids[i]);
-    }));
-  }
-  for (const std::shared_future<void>& part : done) part.wait();
-  for (const std::shared_future<void>& part : done) part.get();  // rethrows
+  MoveToPoses(adjusted_, point_ids, piece, num_threads);
 }
 
 }  // namespace tmr

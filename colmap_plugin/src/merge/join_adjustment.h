@@ -55,9 +55,8 @@ class JoinAdjustment {
   size_t NumJoinedPoints() const { return num_joined_points_; }
 
   // Gives the registered images of `piece` (a whole model in the scene's
-  // frame, dropped copies deregistered) their adjusted poses; each point
-  // moves with the first image that observes it, then is triangulated again
-  // where that fits better (as AdjustOnLongestTracks), on num_threads.
+  // frame, dropped copies deregistered) their adjusted poses, its points
+  // moved and triangulated again (MoveToPoses), on num_threads.
   void MoveToAdjustedPoses(colmap::Reconstruction* piece,
                            int num_threads = 1) const;
 

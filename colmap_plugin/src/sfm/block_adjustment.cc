@@ -4,9 +4,11 @@
 #include <colmap/estimators/bundle_adjustment_ceres.h>
 #include <colmap/geometry/triangulation.h>
 #include <colmap/scene/projection.h>
+#include <colmap/util/threading.h>
 
 #include <algorithm>
 #include <functional>
+#include <future>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -233,6 +235,39 @@ std::vector<colmap::point3D_t> LongestTrackPoints(
   return ids;
 }
 
+void MoveToPoses(
+    const std::unordered_map<colmap::image_t, colmap::Rigid3d>& cam_from_world,
+    const std::vector<colmap::point3D_t>& point_ids,
+    colmap::Reconstruction* model, int num_threads) {
+  for (const colmap::point3D_t point_id : point_ids) {
+    colmap::Point3D& point = model->Point3D(point_id);
+    const colmap::image_t id = point.track.Element(0).image_id;
+    const auto moved = cam_from_world.find(id);
+    if (moved == cam_from_world.end()) continue;
+    point.xyz = colmap::Inverse(moved->second) *
+                (model->Image(id).CamFromWorld() * point.xyz);
+  }
+  for (const colmap::image_t id : model->RegImageIds()) {
+    const auto moved = cam_from_world.find(id);
+    if (moved != cam_from_world.end())
+      SetPoseAndRegister(id, moved->second, model);
+  }
+  // Each point's triangulation reads the poses and writes only that point.
+  const size_t workers = static_cast<size_t>(std::max(1, num_threads));
+  const size_t chunk = (point_ids.size() + workers - 1) / workers;
+  colmap::ThreadPool pool(static_cast<int>(workers));
+  std::vector<std::shared_future<void>> done;
+  for (size_t begin = 0; begin < point_ids.size(); begin += chunk) {
+    const size_t end = std::min(point_ids.size(), begin + chunk);
+    done.push_back(pool.AddTask([&, begin, end] {
+      for (size_t i = begin; i < end; ++i)
+        RetriangulateIfBetter(model, point_ids[i]);
+    }));
+  }
+  for (const std::shared_future<void>& part : done) part.wait();
+  for (const std::shared_future<void>& part : done) part.get();  // rethrows
+}
+
 colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,
                                             size_t points_per_image) {
   colmap::Reconstruction reduced;
@@ -252,25 +287,19 @@ std::string AdjustOnLongestTracks(
   report << "global on " << reduced.NumPoints3D() << " of "
          << model->NumPoints3D() << " points ("
          << AdjustWholeModel(options, &reduced) << ")";
-  // A point left out moves with the first image that observes it, then is
-  // triangulated again with the adjusted poses where that fits better.
-  std::vector<colmap::point3D_t> left_out;
-  for (const auto& [point_id, point] : model->Points3D()) {
-    if (reduced.ExistsPoint3D(point_id)) continue;
-    left_out.push_back(point_id);
-    const colmap::image_t id = point.track.Element(0).image_id;
-    model->Point3D(point_id).xyz =
-        colmap::Inverse(reduced.Image(id).CamFromWorld()) *
-        (model->Image(id).CamFromWorld() * point.xyz);
-  }
-  for (const colmap::image_t id : reduced.RegImageIds())
-    SetPoseAndRegister(id, reduced.Image(id).CamFromWorld(), model);
   for (const auto& [camera_id, camera] : reduced.Cameras())
     model->Camera(camera_id).params = camera.params;
   for (const auto& [point_id, point] : reduced.Points3D())
     model->Point3D(point_id).xyz = point.xyz;
-  for (const colmap::point3D_t point_id : left_out)
-    RetriangulateIfBetter(model, point_id);
+  // A point left out moves with the first image that observes it, then is
+  // triangulated again with the adjusted poses where that fits better.
+  std::vector<colmap::point3D_t> left_out;
+  for (const auto& [point_id, point] : model->Points3D())
+    if (!reduced.ExistsPoint3D(point_id)) left_out.push_back(point_id);
+  std::unordered_map<colmap::image_t, colmap::Rigid3d> adjusted;
+  for (const colmap::image_t id : reduced.RegImageIds())
+    adjusted[id] = reduced.Image(id).CamFromWorld();
+  MoveToPoses(adjusted, left_out, model);
   return report.str();
 }
 

@@ -9,6 +9,7 @@
 #include <colmap/scene/reconstruction.h>
 
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -19,6 +20,17 @@ namespace tmr {
 // observations better than its current position.
 void RetriangulateIfBetter(colmap::Reconstruction* model,
                            colmap::point3D_t point_id);
+
+// Gives each registered image of `model` that `cam_from_world` holds that
+// pose; each of `point_ids` first moves rigidly with the first image that
+// observes it (from its pose in `model` to its new one), then is
+// triangulated again where that fits better (RetriangulateIfBetter), on
+// num_threads: a model's points after an adjustment of its poses on a part
+// of its points.
+void MoveToPoses(
+    const std::unordered_map<colmap::image_t, colmap::Rigid3d>& cam_from_world,
+    const std::vector<colmap::point3D_t>& point_ids,
+    colmap::Reconstruction* model, int num_threads = 1);
 
 // Cuts the registered images of `model` into blocks of at most max_images
 // that are each grown breadth-first over shared 3D points (region growing
