@@ -29,12 +29,14 @@ if [[ "${TMR_SANITIZE_ALL:-0}" == 1 ]]; then
   ctest --test-dir build-asan --output-on-failure --parallel 2 \
     -E "^(find_package_consumer|libtmr_without_colmap)$" "$@"
 else
-  # Three block-adjustment cases spend their time in Ceres' solver on a
-  # city (not instrumented: 775 of the 2,425 s the quick tests take under
-  # ASan); the block code they run is also run by that suite's other cases.
+  # Three block-adjustment cases and the join's adjustment of two pieces
+  # spend their time in Ceres' solver on a city (not instrumented: 775 of
+  # the 2,425 s the quick tests took under ASan before the join's case);
+  # the code they run is also run by their suites' other cases and by
+  # synthetic_task_results, whose join adjusts its groups.
   echo "[asan] running ctest -L quick, then the bad-input matrix"
   ctest --test-dir build-asan --output-on-failure --parallel 2 -L quick \
-    -E "^BlockAdjustmentTest[.](BlocksSideBySideDoAsTheWholeAdjustment|RoundsMergeTracksThatFitOnlyAfterAnAdjustment|BlocksRecoverASeamAsTheWholeAdjustmentDoes)$" \
+    -E "^(BlockAdjustmentTest[.](BlocksSideBySideDoAsTheWholeAdjustment|RoundsMergeTracksThatFitOnlyAfterAnAdjustment|BlocksRecoverASeamAsTheWholeAdjustmentDoes)|JoinAdjustmentTest[.]PiecesPlacedOffComeBackTogether)$" \
     "$@"
   ctest --test-dir build-asan --output-on-failure -R "^bad_input_matrix$" "$@"
 fi
