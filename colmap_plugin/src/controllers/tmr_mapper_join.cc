@@ -26,6 +26,7 @@
 #include "merge/join_adjustment.h"
 #include "merge/scene_assembly.h"
 #include "sfm/model_edits.h"
+#include "tmr/util/futures.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -118,9 +119,7 @@ bool TmrMapperStages::JoinGroups(int num_threads, const Record& record,
           light.WriteBinary(light_path);
         }));
       }
-      // All done before any rethrows: they use `model` and `entry`.
-      for (const std::shared_future<void>& copy : written) copy.wait();
-      for (const std::shared_future<void>& copy : written) copy.get();
+      WaitForAll(written);  // they use `model` and `entry`
       entry.model.num_images = model.NumRegImages();
       for (const colmap::image_t id : model.RegImageIds()) {
         if (seams.count(id))

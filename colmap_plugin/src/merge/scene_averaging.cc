@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <numeric>
 #include <unordered_map>
@@ -16,6 +17,7 @@
 #include "merge/scene_assembly.h"
 #include "merge/similarity_averaging.h"
 #include "sfm/model_edits.h"
+#include "tmr/util/futures.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -204,8 +206,9 @@ std::vector<ModelPairAlignment> SceneAssembler::AlignModelPairs(
   }
   // Every pair aligned at once (the alignments only read the models).
   colmap::ThreadPool pool(std::max(1, o_.num_threads));
+  std::vector<std::shared_future<void>> done;
   for (size_t p = 0; p < pairs.size(); ++p) {
-    pool.AddTask([&, p] {
+    done.push_back(pool.AddTask([&, p] {
       const auto start = Clock::now();
       ModelPairAlignment& pair = pairs[p];
       pair.alignment =
@@ -220,9 +223,9 @@ std::vector<ModelPairAlignment> SceneAssembler::AlignModelPairs(
         if (!link.points2.empty()) pair.link = std::move(link);
       }
       pair.seconds = SecondsSince(start);
-    });
+    }));
   }
-  pool.Wait();
+  WaitForAll(done);
   return pairs;
 }
 

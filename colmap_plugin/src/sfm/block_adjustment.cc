@@ -18,6 +18,7 @@
 #include <unordered_set>
 
 #include "sfm/model_edits.h"
+#include "tmr/util/futures.h"
 
 namespace tmr {
 namespace {
@@ -264,8 +265,7 @@ void MoveToPoses(
         RetriangulateIfBetter(model, point_ids[i]);
     }));
   }
-  for (const std::shared_future<void>& part : done) part.wait();
-  for (const std::shared_future<void>& part : done) part.get();  // rethrows
+  WaitForAll(done);
 }
 
 colmap::Reconstruction ModelOfLongestTracks(const colmap::Reconstruction& model,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include "sfm/block_adjustment.h"
 #include "sfm/model_edits.h"
+#include "tmr/util/futures.h"
 #include "tmr/util/process.h"
 
 namespace tmr {
@@ -73,16 +75,17 @@ BlocksAdjustment AdjustBlocksAtOnce(
   std::vector<BlockAdjustment> adjusted(num_blocks);
   {
     colmap::ThreadPool pool(std::max(1, std::min(num_workers, num_blocks)));
+    std::vector<std::shared_future<void>> done;
     for (int b = 0; b < num_blocks; ++b) {
-      pool.AddTask([&, b] {
+      done.push_back(pool.AddTask([&, b] {
         const auto block_start = std::chrono::steady_clock::now();
         parts[b] = BlockPart(*model, blocks[b]);
         adjusted[b] =
             AdjustBlock(blocks[b], options, parts[b].get(), shared_cameras);
         result.block_seconds[b] = SecondsSince(block_start);
-      });
+      }));
     }
-    pool.Wait();
+    WaitForAll(done);
   }
 
   std::vector<colmap::point3D_t> seam_points;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -17,6 +18,7 @@
 
 #include "synthetic/observations.h"
 #include "synthetic/scene_layout.h"
+#include "tmr/util/futures.h"
 
 namespace tmr {
 namespace {
@@ -190,13 +192,14 @@ void WriteDatabase(const std::string& database_path,
   for (size_t begin = 0; begin < pairs.size(); begin += kChunk) {
     const size_t end = std::min(pairs.size(), begin + kChunk);
     geometries.assign(end - begin, colmap::TwoViewGeometry());
+    std::vector<std::shared_future<void>> verified;
     for (size_t p = begin; p < end; ++p) {
-      pool.AddTask([&, p] {
+      verified.push_back(pool.AddTask([&, p] {
         geometries[p - begin] =
             VerifiedGeometry(pairs[p], cameras, keypoints, options.seed);
-      });
+      }));
     }
-    pool.Wait();
+    WaitForAll(verified);
     for (size_t p = begin; p < end; ++p) {
       const ImagePairMatches& pair = pairs[p];
       const int n1 = keypoints[pair.image1].xy.size();
